@@ -1,0 +1,39 @@
+// A shape placed in the world by a rigid pose: x_W = R_WS * x_S + p_WS.
+//
+// The support of a posed shape rotates the direction into the shape's frame and the point
+// back out. `shift` is subtracted from the translation before the rotated point is added,
+// so that two shapes far from the origin are compared in a frame near them.
+#pragma once
+
+#include "dss/core/types.h"
+
+namespace dss {
+
+template <class S>
+struct Posed {
+  using Scalar = decltype(std::declval<S>().magnitude());
+  static constexpr bool kExactVertices = false;
+
+  S shape;
+  Mat3<Scalar> R_WS = Mat3<Scalar>::Identity();
+  Vec3<Scalar> p_WS = Vec3<Scalar>::Zero();
+
+  Posed() = default;
+  Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p) : shape(std::move(s)), R_WS(R), p_WS(p) {}
+
+  Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
+    const Vec3<Scalar> d_S = R_WS.transpose() * d_W;
+    const Vec3<Scalar> x_S = shape.support(d_S, Vec3<Scalar>::Zero());
+    return R_WS * x_S + (p_WS - shift);
+  }
+  Vec3<Scalar> center() const { return R_WS * shape.center() + p_WS; }
+  Vec3<Scalar> anchor() const { return p_WS; }
+  Scalar magnitude() const { return shape.magnitude(); }
+};
+
+template <class S, class T>
+Posed<S> posed(S s, const Mat3<T>& R, const Vec3<T>& p) {
+  return Posed<S>(std::move(s), R, p);
+}
+
+}  // namespace dss

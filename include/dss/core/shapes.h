@@ -1,0 +1,141 @@
+// Primitive convex shapes, each described only by its support function in its own frame.
+//
+// Contract shared by every shape type S<T> of the core (primitives here, ConvexHull,
+// Posed, Padded and SweptHull in their own headers):
+//   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const
+//       a point x of the shape maximising d·x, minus `shift`. `d` need not be unit; for
+//       d = 0 any point of the shape is returned. Posed shapes subtract `shift` from
+//       their translation before adding the rotated local point, which is what lets the
+//       decision work in a frame centred between the two shapes (large offsets cancel
+//       exactly where they can).
+//   Vec3<T> center() const      a point of the shape (interior when it has one).
+//   Vec3<T> anchor() const      the translation a pose adds (zero for unposed shapes).
+//   T magnitude() const         an upper bound of |x - anchor()| over the shape; it scales
+//                               the rounding-error bounds of the exact mode.
+//   static constexpr bool kExactVertices
+//                               true when `support` with a zero shift returns one of the
+//                               shape's input points bit for bit (vertex sets given in
+//                               world coordinates). The exact mode can then certify
+//                               every answer exactly; otherwise "disjoint" answers are
+//                               certified and "intersect" answers are exact up to the
+//                               rounding of the support points (about 1e-16 of the size).
+//
+// Dimensions follow URDF: a box by its full edge lengths; cylinder, capsule and cone along
+// local z, centred at the origin; the cone's base disc at z = -length/2 and apex at
+// z = +length/2 (as fcl::Cone); a capsule is a segment of `length` along z plus `radius`.
+// All shapes are closed sets: touching counts as intersecting.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "dss/core/types.h"
+
+namespace dss {
+
+template <class T>
+struct SphereT {
+  T radius{0};
+  static constexpr bool kExactVertices = false;
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n = d.norm();
+    // n == 0: any point will do; the centre keeps the result finite.
+    return (n > T(0) ? Vec3<T>(d * (radius / n)) : Vec3<T>::Zero()) - shift;
+  }
+  Vec3<T> center() const { return Vec3<T>::Zero(); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return radius; }
+};
+
+template <class T>
+struct BoxT {
+  Vec3<T> half = Vec3<T>::Zero();  // half edge lengths (URDF size / 2)
+  static constexpr bool kExactVertices = false;
+  static BoxT fromSize(const Vec3<T>& size) { return BoxT{size / T(2)}; }
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    return Vec3<T>(d.x() >= T(0) ? half.x() : -half.x(), d.y() >= T(0) ? half.y() : -half.y(),
+                   d.z() >= T(0) ? half.z() : -half.z()) -
+           shift;
+  }
+  Vec3<T> center() const { return Vec3<T>::Zero(); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return half.norm(); }
+};
+
+template <class T>
+struct CapsuleT {
+  T radius{0};
+  T half_length{0};
+  static constexpr bool kExactVertices = false;
+  static CapsuleT fromLength(T radius, T length) { return CapsuleT{radius, length / T(2)}; }
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n = d.norm();
+    Vec3<T> p = n > T(0) ? Vec3<T>(d * (radius / n)) : Vec3<T>::Zero();
+    p.z() += d.z() >= T(0) ? half_length : -half_length;
+    return p - shift;
+  }
+  Vec3<T> center() const { return Vec3<T>::Zero(); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return radius + half_length; }
+};
+
+template <class T>
+struct CylinderT {
+  T radius{0};
+  T half_length{0};
+  static constexpr bool kExactVertices = false;
+  static CylinderT fromLength(T radius, T length) { return CylinderT{radius, length / T(2)}; }
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
+    const T s = r > T(0) ? radius / r : T(0);
+    return Vec3<T>(d.x() * s, d.y() * s, d.z() >= T(0) ? half_length : -half_length) - shift;
+  }
+  Vec3<T> center() const { return Vec3<T>::Zero(); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return std::sqrt(radius * radius + half_length * half_length); }
+};
+
+template <class T>
+struct ConeT {
+  T radius{0};       // of the base disc, at z = -half_length
+  T half_length{0};  // apex at z = +half_length
+  static constexpr bool kExactVertices = false;
+  static ConeT fromLength(T radius, T length) { return ConeT{radius, length / T(2)}; }
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
+    // apex value d.z*h against the best base-rim value r*radius - d.z*h
+    if (d.z() * half_length >= r * radius - d.z() * half_length) {
+      return Vec3<T>(T(0), T(0), half_length) - shift;
+    }
+    const T s = r > T(0) ? radius / r : T(0);
+    return Vec3<T>(d.x() * s, d.y() * s, -half_length) - shift;
+  }
+  // The centroid of a cone lies a quarter of the way from the base to the apex.
+  Vec3<T> center() const { return Vec3<T>(T(0), T(0), -half_length / T(2)); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return std::sqrt(radius * radius + half_length * half_length); }
+};
+
+template <class T>
+struct EllipsoidT {
+  Vec3<T> radii = Vec3<T>::Zero();
+  static constexpr bool kExactVertices = false;
+  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    // x = D^2 d / |D d| with D = diag(radii)
+    const Vec3<T> dd = radii.cwiseProduct(d);
+    const T n = dd.norm();
+    return (n > T(0) ? Vec3<T>(radii.cwiseProduct(dd) / n) : Vec3<T>::Zero()) - shift;
+  }
+  Vec3<T> center() const { return Vec3<T>::Zero(); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return radii.maxCoeff(); }
+};
+
+using Sphere = SphereT<double>;
+using Box = BoxT<double>;
+using Capsule = CapsuleT<double>;
+using Cylinder = CylinderT<double>;
+using Cone = ConeT<double>;
+using Ellipsoid = EllipsoidT<double>;
+
+}  // namespace dss

@@ -1,0 +1,20 @@
+// Basic linear-algebra aliases shared by the whole core. The core is templated on the
+// scalar type so that the same code runs in `double` (default, and the base of the exact
+// mode) and in `float` (the paper's arithmetic).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace dss {
+
+template <class T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+template <class T>
+using Mat3 = Eigen::Matrix<T, 3, 3>;
+
+using Vec3d = Vec3<double>;
+using Mat3d = Mat3<double>;
+using Vec3f = Vec3<float>;
+
+}  // namespace dss
