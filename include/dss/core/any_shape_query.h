@@ -1,0 +1,56 @@
+// Pairwise decisions on AnyShape with poses: the shape-type dispatch happens once per pair
+// (std::visit), then the decision runs on concrete types.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "dss/core/any_shape.h"
+#include "dss/core/dss.h"
+#include "dss/core/gjk.h"
+#include "dss/core/padded.h"
+#include "dss/core/posed.h"
+
+namespace dss {
+
+namespace detail {
+/// A shape by reference (models keep their hulls; queries do not copy them).
+template <class S>
+struct Ref {
+  const S& s;
+  static constexpr bool kExactVertices = false;
+  Vec3d support(const Vec3d& d, const Vec3d& shift) const { return s.support(d, shift); }
+  Vec3d center() const { return s.center(); }
+  Vec3d anchor() const { return s.anchor(); }
+  double magnitude() const { return s.magnitude(); }
+};
+}  // namespace detail
+
+enum class Algorithm : std::uint8_t { kDss, kGjk, kHybrid };
+
+template <class A, class B>
+Result decide(const A& a, const B& b, const Options& opt, Algorithm algo) {
+  switch (algo) {
+    case Algorithm::kGjk: return intersectGjk(a, b, opt);
+    case Algorithm::kHybrid: return intersectHybrid(a, b, opt);
+    default: return intersect(a, b, opt);
+  }
+}
+
+/// Do shape a at pose X_WA and shape b at pose X_WB intersect? `padding` > 0 grows a by a
+/// ball: the answer is then "distance <= padding".
+inline Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
+                        const Eigen::Isometry3d& X_WB, const Options& opt = {},
+                        double padding = 0.0, Algorithm algo = Algorithm::kDss) {
+  return std::visit(
+      [&](const auto& sa, const auto& sb) {
+        using SA = std::decay_t<decltype(sa)>;
+        using SB = std::decay_t<decltype(sb)>;
+        const Posed<detail::Ref<SA>> pa(detail::Ref<SA>{sa}, X_WA.linear(), X_WA.translation());
+        const Posed<detail::Ref<SB>> pb(detail::Ref<SB>{sb}, X_WB.linear(), X_WB.translation());
+        if (padding > 0.0) return decide(padded(pa, padding), pb, opt, algo);
+        return decide(pa, pb, opt, algo);
+      },
+      a, b);
+}
+
+}  // namespace dss

@@ -1,0 +1,226 @@
+// Decision Sphere Search: do two convex shapes intersect? (Hornus 2017, Algorithm 2.)
+//
+// A and B intersect iff the origin lies in P = A - B, iff h_P(n) >= 0 for every direction n.
+// The search keeps a spherical polygon S (see spherical_polygon.h) that contains every
+// separating direction. Each step tests the centre n of S: the support point q = S_A(n) -
+// S_B(-n) either proves n separating (n.q < 0: "disjoint", n is the certificate) or removes
+// the hemisphere {w : w.q >= 0} from S. An empty S proves "intersect".
+//
+// Only two kinds of signs decide anything: n.q < 0 and the 3x3 determinants of the polygon
+// update. In Mode::kExact both are exact: the polygon signs by a floating-point filter with an
+// exact fallback, the separation test by a certified bound on h_A(n) + h_B(-n) (and, for
+// shapes given by world-coordinate vertices, an exact evaluation of it). The next test
+// direction only steers the search and needs no exactness.
+//
+// The computation runs in a frame centred on one of the shapes (see chooseShift) so that
+// large common offsets cancel before rounding. Touching counts as intersecting. No
+// allocation, no virtual call, no shared state: safe to call from many threads.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "dss/core/any_shape.h"
+#include "dss/core/exact_predicates.h"
+#include "dss/core/posed.h"
+#include "dss/core/result.h"
+#include "dss/core/simplex.h"
+#include "dss/core/spherical_polygon.h"
+
+namespace dss {
+namespace detail {
+
+template <class S>
+using ScalarOf = std::decay_t<decltype(std::declval<const S&>().magnitude())>;
+
+/// The frame origin for a pair: shapes given by world vertices must not be shifted (their
+/// points are the exact inputs), so the shift is zero unless both shapes carry a pose.
+template <class A, class B>
+Vec3d chooseShift(const A& a, const B& b) {
+  const Vec3d ta = a.anchor().template cast<double>();
+  const Vec3d tb = b.anchor().template cast<double>();
+  if (ta.isZero(0) || tb.isZero(0)) return Vec3d::Zero();
+  return tb;
+}
+
+/// The Minkowski difference A - B seen from the working scalar W.
+template <class A, class B, class W>
+struct Difference {
+  using SA = ScalarOf<A>;
+  using SB = ScalarOf<B>;
+  const A& a;
+  const B& b;
+  Vec3<SA> shift_a;
+  Vec3<SB> shift_b;
+  W err_scale;  // |n| * err_scale bounds the rounding of h_A(n) + h_B(-n) from the supports
+
+  Difference(const A& sa, const B& sb) : a(sa), b(sb) {
+    const Vec3d c = chooseShift(sa, sb);
+    shift_a = c.template cast<SA>();
+    shift_b = c.template cast<SB>();
+    const double mag = double(sa.magnitude()) + double(sb.magnitude()) +
+                       (sa.anchor().template cast<double>() - c).norm() +
+                       (sb.anchor().template cast<double>() - c).norm();
+    // Each support value h(n) = n.x is off by a few ulps of |n| (|x_S| + |t|): rotations of
+    // the direction and of the point, normalisations, the translation and the dot product.
+    // 32 u covers them with margin for both shapes (float supports use float's u).
+    const double u = std::max(double(std::numeric_limits<SA>::epsilon()),
+                              double(std::numeric_limits<SB>::epsilon())) / 2;
+    err_scale = W(32 * u * mag);
+  }
+
+  Vec3<W> start(Vec3<W>& lo) const {
+    const Vec3<W> ca = (a.center() - shift_a).template cast<W>();
+    const Vec3<W> cb = (b.center() - shift_b).template cast<W>();
+    return split(ca, cb, lo);
+  }
+
+  /// q = S_A(n) - S_B(-n) with its exact rounding error in lo (exact mode).
+  Vec3<W> support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb, Vec3<W>& lo) const {
+    pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
+    pb = b.support((-n).template cast<SB>(), shift_b).template cast<W>();
+    return split(pa, pb, lo);
+  }
+
+  static Vec3<W> split(const Vec3<W>& x, const Vec3<W>& y, Vec3<W>& lo) {
+    Vec3<W> hi;
+    if constexpr (std::is_same<W, double>::value) {
+      for (int k = 0; k < 3; ++k) exact::twoDiff(x[k], y[k], hi[k], lo[k]);
+    } else {
+      hi = x - y;
+      lo.setZero();
+    }
+    return hi;
+  }
+};
+
+/// Exact sign of h_A(n) + h_B(-n) for two world-vertex hulls; on return (if >= 0) pa, pb are
+/// exact maximisers. Candidates are the vertices within the floating-point error of the best.
+template <class A, class B>
+int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d& pb) {
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  auto best = [&](const auto& hull, const Vec3d& d) {
+    const auto& pts = hull.points();
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& p : pts) top = std::max(top, d.dot(p));
+    const double slack = 8 * u * d.lpNorm<1>() * hull.magnitude();
+    int arg = -1;
+    for (int i = 0; i < int(pts.size()); ++i) {
+      if (d.dot(pts[i]) < top - slack) continue;
+      if (arg < 0 || exact::dotDiffSign(d.data(), pts[i].data(), pts[arg].data()) > 0) arg = i;
+    }
+    return pts[arg];
+  };
+  pa = best(a, n);
+  pb = best(b, Vec3d(-n));
+  return exact::dotDiffSign(n.data(), pa.data(), pb.data());
+}
+
+template <class W, bool Exact, class A, class B>
+Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
+  Result result;
+  const Difference<A, B, W> diff(a, b);
+  using Poly = SphericalPolygon<W, Exact>;
+  Poly poly;
+  Pole<W> pole;
+  pole.hi = diff.start(pole.lo);
+  if (!pole.hi.allFinite()) {
+    result.status = Status::kInvalidInput;
+    return result;
+  }
+  pole.norm = pole.hi.norm();
+  if (pole.hi.isZero(0) && pole.lo.isZero(0)) return result;  // centres coincide
+  poly.init(pole);
+
+  // Hybrid: GJK's simplex (closest point to the origin) steers the first steps.
+  Vec3<W> simplex[4];
+  int simplex_size = 0;
+  Vec3<W> v = pole.hi;  // GJK's current point of P closest to the origin
+
+  for (;;) {
+    Vec3<W> n;
+    if (result.iterations < gjk_steps && !v.isZero(0)) {
+      n = -v;
+    } else {
+      gjk_steps = 0;
+      n = poly.center();
+    }
+    if (result.iterations >= max_iterations) {
+      result.status = Status::kIterationLimit;
+      return result;
+    }
+    ++result.iterations;
+    Vec3<W> pa, pb;
+    pole.hi = diff.support(n, pa, pb, pole.lo);
+    if (!pole.hi.allFinite() || !n.allFinite()) {
+      result.status = Status::kInvalidInput;
+      return result;
+    }
+    const W t = n.dot(pole.hi);
+    if (t < W(0)) {
+      if constexpr (!Exact) {
+        result.intersect = false;
+        result.separating_direction = n.template cast<double>();
+        return result;
+      } else {
+        const W nn = n.norm();
+        const W u = std::numeric_limits<W>::epsilon() / 2;
+        // Certified when even the rounding of both supports and of the dot cannot lift it.
+        if (t + nn * (diff.err_scale + W(4) * u * pole.hi.norm()) < W(0)) {
+          result.intersect = false;
+          result.separating_direction = n;
+          return result;
+        }
+        if constexpr (A::kExactVertices && B::kExactVertices) {
+          Vec3d xa, xb;
+          if (exactSeparationSign(a, b, n, xa, xb) < 0) {
+            result.intersect = false;
+            result.separating_direction = n;
+            return result;
+          }
+          pa = xa, pb = xb;
+          pole.hi = Difference<A, B, W>::split(pa, pb, pole.lo);
+        }
+        // Otherwise the direction is not certifiably separating (a gap within rounding of
+        // the supports): keep searching with q, which is a point of P up to rounding.
+      }
+    }
+    pole.norm = pole.hi.norm();
+    switch (poly.clip(pole)) {
+      case ClipResult::kEmpty:
+        return result;
+      case ClipResult::kOverflow:
+        result.status = Status::kIterationLimit;
+        return result;
+      default:
+        break;
+    }
+    if (gjk_steps > 0) {
+      // GJK step: add q to the simplex and move v to its point closest to the origin.
+      simplex[simplex_size++] = pole.hi;
+      v = closestOnSimplex(simplex, simplex_size);
+    }
+  }
+}
+
+}  // namespace detail
+
+/// Decides whether A and B intersect (touching counts). A and B: any core shape types.
+template <class A, class B>
+Result intersect(const A& a, const B& b, const Options& opt = {}) {
+  using SA = detail::ScalarOf<A>;
+  using SB = detail::ScalarOf<B>;
+  constexpr bool kFloatShapes = std::is_same<SA, float>::value && std::is_same<SB, float>::value;
+  if (opt.mode == Mode::kFloat || kFloatShapes) {
+    if (opt.mode == Mode::kExact && kFloatShapes)
+      return detail::runDss<double, true>(a, b, opt.max_iterations);
+    if (opt.mode == Mode::kDouble && kFloatShapes)
+      return detail::runDss<double, false>(a, b, opt.max_iterations);
+    return detail::runDss<float, false>(a, b, opt.max_iterations);
+  }
+  if (opt.mode == Mode::kExact) return detail::runDss<double, true>(a, b, opt.max_iterations);
+  return detail::runDss<double, false>(a, b, opt.max_iterations);
+}
+
+}  // namespace dss
