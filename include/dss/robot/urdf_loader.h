@@ -1,0 +1,35 @@
+// Reading a robot from a URDF file into a RobotModel.
+//
+// urdfdom parses the kinematic tree; a separate XML scan counts every <collision> element of
+// every link, because urdfdom silently drops collision elements after an unknown geometry
+// tag (e.g. <capsule>). Every <collision> that did not become a shape is an error by default
+// (`LoadOptions::allow_dropped_collisions` turns it into a loud warning, recorded in
+// RobotModel::warnings and printed to stderr). Primitives stay exact (box, sphere, cylinder
+// of URDF radius and length along z); meshes become convex hulls. Floating and planar joints
+// are refused with a message naming the joint. Every error is a std::runtime_error whose
+// message names the file and the element (link, joint, collision index, line).
+#pragma once
+
+#include <string>
+
+#include "dss/robot/mesh_paths.h"
+#include "dss/robot/robot_model.h"
+
+namespace dss {
+
+struct LoadOptions {
+  MeshPathOptions mesh_paths;
+  /// false (default): a <collision> that did not become a shape is an error.
+  bool allow_dropped_collisions = false;
+  /// Load collision geometry at all (false: kinematics only).
+  bool load_collisions = true;
+};
+
+RobotModel loadUrdf(const std::string& path, const LoadOptions& options = {});
+
+/// As loadUrdf, from text; `source` names it in messages and `base_dir` anchors relative
+/// mesh paths.
+RobotModel loadUrdfString(const std::string& xml, const std::string& source,
+                          const std::string& base_dir, const LoadOptions& options = {});
+
+}  // namespace dss

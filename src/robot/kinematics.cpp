@@ -1,0 +1,122 @@
+// Forward kinematics with fixed transforms folded in advance (see dss/robot/kinematics.h).
+#include "dss/robot/kinematics.h"
+
+#include <cmath>
+
+namespace dss {
+
+Kinematics::Kinematics(const RobotModel& model, bool all_links)
+    : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
+  const std::size_t n = model.links.size();
+  for (const auto& j : model.joints) joints_.push_back(&j);
+  // needed[l]: l carries geometry or leads to a link that does.
+  std::vector<char> needed(n, all_links ? 1 : 0);
+  for (std::size_t l = 0; l < n; ++l)
+    if (model.links[l].hasGeometry())
+      for (int k = static_cast<int>(l); k >= 0 && !needed[k]; k = model.links[k].parent_link) needed[k] = 1;
+  // computed[l]: the pose is written. A needed link is computed when it has geometry, is the
+  // root, or its parent joint moves (fixed links without geometry are folded away).
+  std::vector<char> computed(n, 0);
+  for (std::size_t l = 0; l < n; ++l) {
+    const RobotLink& link = model.links[l];
+    computed[l] = needed[l] && (all_links || link.hasGeometry() || link.parent_joint < 0 ||
+                                model.joints[link.parent_joint].isMoving());
+  }
+  computed[root_] = 1;
+  updated_.push_back(root_);
+  for (std::size_t l = 0; l < n; ++l) {  // depth-first order: parents first
+    if (!computed[l] || static_cast<int>(l) == root_) continue;
+    const RobotLink& link = model.links[l];
+    const RobotJoint& joint = model.joints[link.parent_joint];
+    // Constant part: from the nearest computed ancestor through fixed joints to the joint frame.
+    Eigen::Isometry3d X = joint.X_PJ;
+    int ref = link.parent_link;
+    while (!computed[ref]) {
+      const RobotJoint& pj = model.joints[model.links[ref].parent_joint];  // fixed, by construction
+      X = pj.X_PJ * X;
+      ref = model.links[ref].parent_link;
+    }
+    Step s;
+    s.link = static_cast<int>(l);
+    s.ref = ref == root_ ? -1 : ref;
+    s.R_c = X.linear();
+    s.p_c = X.translation();
+    s.axis = joint.axis;
+    s.multiplier = 1.0;
+    s.offset = 0.0;
+    s.q_index = joint.active_index;
+    if (joint.mimic_active >= 0) {
+      s.q_index = joint.mimic_active;
+      s.multiplier = joint.mimic_multiplier;
+      s.offset = joint.mimic_offset;
+    }
+    s.motion = Motion::kNone;
+    if (joint.isMoving()) {
+      const bool rot = joint.type != JointType::kPrismatic;
+      s.motion = rot ? Motion::kRotAxis : Motion::kTransAxis;
+      for (int k = 0; k < 3; ++k) {
+        const double a = joint.axis[k];
+        if (std::abs(a) == 1.0) {
+          s.motion = static_cast<Motion>(static_cast<int>(rot ? Motion::kRotX : Motion::kTransX) + k);
+          s.multiplier *= a;
+          s.offset *= a;
+        }
+      }
+    }
+    steps_.push_back(s);
+    updated_.push_back(s.link);
+  }
+}
+
+double Kinematics::jointValue(const double* q, int joint) const {
+  const RobotJoint& j = *joints_[joint];
+  if (j.active_index >= 0) return q[j.active_index];
+  if (j.mimic_active >= 0) return j.mimic_multiplier * q[j.mimic_active] + j.mimic_offset;
+  return 0.0;
+}
+
+void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) const {
+  X_WL[root_] = X_WR_;
+  for (const Step& s : steps_) {
+    const Eigen::Isometry3d& X_ref = s.ref < 0 ? X_WR_ : X_WL[s.ref];
+    Eigen::Isometry3d& X = X_WL[s.link];
+    Eigen::Matrix3d R = X_ref.linear() * s.R_c;
+    Eigen::Vector3d p = X_ref.linear() * s.p_c + X_ref.translation();
+    if (s.motion != Motion::kNone) {
+      const double v = s.multiplier * q[s.q_index] + s.offset;
+      switch (s.motion) {
+        case Motion::kRotX:
+        case Motion::kRotY:
+        case Motion::kRotZ: {
+          // Rotation about local axis k mixes the two other columns.
+          const int k = static_cast<int>(s.motion) - static_cast<int>(Motion::kRotX);
+          const int a = (k + 1) % 3, b = (k + 2) % 3;
+          const double c = std::cos(v), sn = std::sin(v);
+          const Eigen::Vector3d ca = R.col(a), cb = R.col(b);
+          R.col(a) = c * ca + sn * cb;
+          R.col(b) = c * cb - sn * ca;
+          break;
+        }
+        case Motion::kRotAxis: R = R * Eigen::AngleAxisd(v, s.axis).toRotationMatrix(); break;
+        case Motion::kTransX:
+        case Motion::kTransY:
+        case Motion::kTransZ:
+          p += v * R.col(static_cast<int>(s.motion) - static_cast<int>(Motion::kTransX));
+          break;
+        case Motion::kTransAxis: p += v * (R * s.axis); break;
+        default: break;
+      }
+    }
+    X.linear() = R;
+    X.translation() = p;
+    X.makeAffine();
+  }
+}
+
+std::vector<Eigen::Isometry3d> Kinematics::linkPoses(const std::vector<double>& q) const {
+  std::vector<Eigen::Isometry3d> X(num_links_, Eigen::Isometry3d::Identity());
+  computeLinkPoses(q.data(), X.data());
+  return X;
+}
+
+}  // namespace dss
