@@ -71,7 +71,7 @@ void scale(const Expansion& e, double s, Expansion& h) {
   twoProd(e.c[0], s, q, hh);
   if (hh != 0.0) h.c[h.n++] = hh;
   for (int i = 1; i < e.n; ++i) {
-    double p1, p0, sum1, sum2;
+    double p1, p0, sum1;
     twoProd(e.c[i], s, p1, p0);
     twoSum(q, p0, sum1, hh);
     if (hh != 0.0) h.c[h.n++] = hh;

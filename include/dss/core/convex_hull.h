@@ -62,10 +62,16 @@ class ConvexHullT {
     return climbs() ? climb(d) : scan(d);
   }
   int scan(const Vec3<T>& d) const {
+    // Coordinates are also kept as separate arrays: this loop is the hottest of the library.
+    const std::size_t n = points_.size();
+    const T* x = soa_.data();
+    const T* y = x + n;
+    const T* z = y + n;
+    const T dx = d.x(), dy = d.y(), dz = d.z();
     int best = 0;
-    T best_value = points_[0].dot(d);
-    for (std::size_t i = 1; i < points_.size(); ++i) {
-      const T v = points_[i].dot(d);
+    T best_value = x[0] * dx + y[0] * dy + z[0] * dz;
+    for (std::size_t i = 1; i < n; ++i) {
+      const T v = x[i] * dx + y[i] * dy + z[i] * dz;
       if (v > best_value) {
         best_value = v;
         best = static_cast<int>(i);
@@ -106,6 +112,13 @@ class ConvexHullT {
       magnitude_ = std::max(magnitude_, p.norm());
     }
     center_ = sum / T(points_.size());
+    const std::size_t n = points_.size();
+    soa_.resize(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      soa_[i] = points_[i].x();
+      soa_[n + i] = points_[i].y();
+      soa_[2 * n + i] = points_[i].z();
+    }
     // Seeds for climbing: the extreme points along +-x, +-y, +-z.
     for (int k = 0; k < 6; ++k) {
       Vec3<T> axis = Vec3<T>::Zero();
@@ -142,6 +155,7 @@ class ConvexHullT {
   }
 
   std::vector<Vec3<T>> points_;
+  std::vector<T> soa_;          // x..., y..., z... of points_
   std::vector<int> offsets_;    // CSR adjacency (empty: linear scan only)
   std::vector<int> adjacency_;
   Vec3<T> center_ = Vec3<T>::Zero();

@@ -45,7 +45,7 @@ Vec3d chooseShift(const A& a, const B& b) {
 }
 
 /// The Minkowski difference A - B seen from the working scalar W.
-template <class A, class B, class W>
+template <class A, class B, class W, bool Exact = true>
 struct Difference {
   using SA = ScalarOf<A>;
   using SB = ScalarOf<B>;
@@ -59,6 +59,8 @@ struct Difference {
     const Vec3d c = chooseShift(sa, sb);
     shift_a = c.template cast<SA>();
     shift_b = c.template cast<SB>();
+    err_scale = W(0);
+    if constexpr (!Exact) return;
     const double mag = double(sa.magnitude()) + double(sb.magnitude()) +
                        (sa.anchor().template cast<double>() - c).norm() +
                        (sb.anchor().template cast<double>() - c).norm();
@@ -85,7 +87,7 @@ struct Difference {
 
   static Vec3<W> split(const Vec3<W>& x, const Vec3<W>& y, Vec3<W>& lo) {
     Vec3<W> hi;
-    if constexpr (std::is_same<W, double>::value) {
+    if constexpr (Exact && std::is_same<W, double>::value) {
       for (int k = 0; k < 3; ++k) exact::twoDiff(x[k], y[k], hi[k], lo[k]);
     } else {
       hi = x - y;
@@ -120,7 +122,7 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
 template <class W, bool Exact, class A, class B>
 Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
   Result result;
-  const Difference<A, B, W> diff(a, b);
+  const Difference<A, B, W, Exact> diff(a, b);
   using Poly = SphericalPolygon<W, Exact>;
   Poly poly;
   Pole<W> pole;
@@ -153,11 +155,11 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     ++result.iterations;
     Vec3<W> pa, pb;
     pole.hi = diff.support(n, pa, pb, pole.lo);
-    if (!pole.hi.allFinite() || !n.allFinite()) {
+    const W t = n.dot(pole.hi);
+    if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
       result.status = Status::kInvalidInput;
       return result;
     }
-    const W t = n.dot(pole.hi);
     if (t < W(0)) {
       if constexpr (!Exact) {
         result.intersect = false;
@@ -180,7 +182,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
             return result;
           }
           pa = xa, pb = xb;
-          pole.hi = Difference<A, B, W>::split(pa, pb, pole.lo);
+          pole.hi = Difference<A, B, W, Exact>::split(pa, pb, pole.lo);
         }
         // Otherwise the direction is not certifiably separating (a gap within rounding of
         // the supports): keep searching with q, which is a point of P up to rounding.

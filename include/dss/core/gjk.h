@@ -18,7 +18,7 @@ namespace detail {
 template <class W, class A, class B>
 Result runGjk(const A& a, const B& b, int max_iterations) {
   Result result;
-  const Difference<A, B, W> diff(a, b);
+  const Difference<A, B, W, false> diff(a, b);
   Vec3<W> lo;
   Vec3<W> v = diff.start(lo);
   if (!v.allFinite()) {

@@ -1,0 +1,28 @@
+// MoveIt's `.scene` text format (PlanningScene::loadGeometryFromStream), both versions.
+//
+//   scene name line
+//   * object id
+//   [x y z                      new format only: the object pose
+//    qx qy qz qw]
+//   shape count
+//   per shape: type line (box | sphere | cylinder | cone | mesh), dimensions (box: x y z;
+//              sphere: r; cylinder and cone: radius length; mesh: "v t", v vertex lines,
+//              t triangle lines), position line, quaternion x y z w line, RGBA line
+//   [subframe count, per subframe: name, position, quaternion]      new format only
+//   .
+//
+// As MoveIt does, the line after `* id` decides the version: with spaces it is the object
+// position (new format), without it is the shape count (old format). Shape poses are
+// relative to the object pose. Poses are in the world frame. Errors name the file and line.
+#pragma once
+
+#include <string>
+
+#include "dss/scene/scene.h"
+
+namespace dss {
+
+Scene loadSceneText(const std::string& path);
+Scene parseSceneText(const std::string& text, const std::string& source);
+
+}  // namespace dss

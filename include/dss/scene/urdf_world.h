@@ -1,0 +1,25 @@
+// A URDF used as a world (e.g. MotionBenchMaker's kitchen): every link's collision geometry,
+// placed at the link's pose with all joints held still.
+//
+// Decision on movable joints: a revolute, prismatic or continuous joint is held at the value
+// given in SceneLoadOptions::joint_values, else at 0 (within its limits, else at the nearest
+// limit), and a line is added to Scene::warnings naming the joint and the value used;
+// with `urdf_require_fixed_joints` such a joint is an error instead. Floating and planar
+// joints are refused. Primitives stay exact (box, sphere, cylinder); meshes (with their
+// `scale`) become convex hulls; mesh paths as in the robot loader (package dirs,
+// ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, the URDF's folder; file:// and relative paths).
+// The URDF's root link is the world frame. Each collision element is one obstacle named
+// "link" (one element) or "link/k"; its object_id is the link name. A `<collision>` element
+// that urdfdom did not turn into geometry (e.g. after an unknown tag) is an error.
+#pragma once
+
+#include <string>
+
+#include "dss/scene/scene.h"
+#include "dss/scene/scene_load_options.h"
+
+namespace dss {
+
+Scene loadUrdfWorld(const std::string& path, const SceneLoadOptions& options = {});
+
+}  // namespace dss

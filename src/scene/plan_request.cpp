@@ -1,0 +1,105 @@
+// Reader of moveit_msgs/MotionPlanRequest YAML (joint-space requests).
+#include "dss/scene/plan_request.h"
+
+#include "dss/scene/scene_error.h"
+#include "scene_util.h"
+#include "yaml_util.h"
+
+namespace dss {
+
+using scene_detail::YamlReader;
+
+std::map<std::string, double> PlanRequest::startState() const {
+  std::map<std::string, double> m;
+  for (std::size_t i = 0; i < start_names.size() && i < start_positions.size(); ++i)
+    m[start_names[i]] = start_positions[i];
+  return m;
+}
+
+PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& source) {
+  const YamlReader y(source);
+  const YAML::Node root = y.load(text);
+  if (!root.IsMap()) y.fail(root, "expected a MotionPlanRequest mapping at the top level");
+  PlanRequest r;
+  r.source = source;
+  r.group_name = y.string(y.require(root, "group_name", "request"), "group_name");
+  if (r.group_name.empty()) y.fail(root["group_name"], "request: empty group_name");
+  if (YamlReader::has(root, "planner_id")) r.planner_id = y.string(root["planner_id"], "planner_id");
+  if (YamlReader::has(root, "allowed_planning_time"))
+    r.allowed_planning_time = y.number(root["allowed_planning_time"], "allowed_planning_time");
+  if (YamlReader::has(root, "num_planning_attempts"))
+    r.num_planning_attempts = y.integer(root["num_planning_attempts"], "num_planning_attempts");
+
+  const YAML::Node start = y.require(root, "start_state", "request");
+  if (YamlReader::has(start, "joint_state")) {
+    const YAML::Node js = start["joint_state"];
+    const YAML::Node names =
+        y.sequence(y.require(js, "name", "start_state.joint_state"), "start_state name");
+    const YAML::Node pos =
+        y.sequence(y.require(js, "position", "start_state.joint_state"), "start_state position");
+    if (names.size() != pos.size())
+      y.fail(js, "start_state.joint_state: " + std::to_string(names.size()) + " names but " +
+                     std::to_string(pos.size()) + " positions");
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      r.start_names.push_back(y.string(names[i], "start_state name"));
+      r.start_positions.push_back(
+          y.number(pos[i], "start_state position of '" + r.start_names.back() + "'"));
+    }
+  }
+  if (YamlReader::has(start, "multi_dof_joint_state")) {
+    const YAML::Node md = start["multi_dof_joint_state"];
+    if (YamlReader::has(md, "transforms")) {
+      const YAML::Node tr = y.sequence(md["transforms"], "multi_dof_joint_state.transforms");
+      for (const auto& t : tr)
+        if (!y.transform(t, "multi_dof_joint_state transform")
+                 .isApprox(Eigen::Isometry3d::Identity(), 1e-12))
+          r.warnings.push_back(y.at(t) + ": non-identity multi-DOF start transform ignored");
+    }
+  }
+  if (YamlReader::has(start, "attached_collision_objects")) {
+    const YAML::Node att = start["attached_collision_objects"];
+    if (att.IsSequence() && att.size() > 0)
+      r.warnings.push_back(y.at(att) + ": attached collision objects in the start state ignored");
+  }
+
+  const YAML::Node goals = y.sequence(y.require(root, "goal_constraints", "request"),
+                                      "goal_constraints");
+  if (goals.size() == 0) y.fail(goals, "request: goal_constraints is empty");
+  for (std::size_t g = 0; g < goals.size(); ++g) {
+    const std::string ge = "goal_constraints[" + std::to_string(g) + "]";
+    const YAML::Node gc = goals[g];
+    if (!gc.IsMap()) y.fail(gc, ge + ": expected a mapping");
+    for (const char* other : {"position_constraints", "orientation_constraints",
+                              "visibility_constraints"}) {
+      const YAML::Node o = YamlReader::optional(gc, other);
+      if (o.IsDefined() && o.IsSequence() && o.size() > 0)
+        y.fail(o, ge + ": " + other + " not supported (joint goals only)");
+    }
+    GoalConstraint goal;
+    if (YamlReader::has(gc, "name")) goal.name = y.string(gc["name"], ge + " name");
+    const YAML::Node jcs = y.sequence(y.require(gc, "joint_constraints", ge), ge + " joint_constraints");
+    if (jcs.size() == 0) y.fail(jcs, ge + ": no joint constraints");
+    for (const auto& jc : jcs) {
+      JointConstraint c;
+      c.joint_name = y.string(y.require(jc, "joint_name", ge + " joint constraint"), "joint_name");
+      const std::string ce = ge + " joint '" + c.joint_name + "'";
+      c.position = y.number(y.require(jc, "position", ce), ce + " position");
+      if (YamlReader::has(jc, "tolerance_above"))
+        c.tolerance_above = y.number(jc["tolerance_above"], ce + " tolerance_above");
+      if (YamlReader::has(jc, "tolerance_below"))
+        c.tolerance_below = y.number(jc["tolerance_below"], ce + " tolerance_below");
+      if (c.tolerance_above < 0 || c.tolerance_below < 0)
+        y.fail(jc, ce + ": negative tolerance");
+      if (YamlReader::has(jc, "weight")) c.weight = y.number(jc["weight"], ce + " weight");
+      goal.joint_constraints.push_back(c);
+    }
+    r.goals.push_back(std::move(goal));
+  }
+  return r;
+}
+
+PlanRequest loadPlanRequestYaml(const std::string& path) {
+  return parsePlanRequestYaml(scene_detail::readTextFile(path), path);
+}
+
+}  // namespace dss

@@ -1,0 +1,349 @@
+// Reader of moveit_msgs/PlanningScene YAML (MotionBenchMaker, robowflex).
+#include "dss/scene/planning_scene_yaml.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "dss/scene/scene_error.h"
+#include "scene_util.h"
+#include "yaml_util.h"
+
+namespace dss {
+
+namespace {
+
+using scene_detail::YamlReader;
+
+// shape_msgs/SolidPrimitive type numbers.
+enum PrimitiveType { kBoxType = 1, kSphereType = 2, kCylinderType = 3, kConeType = 4 };
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+class SceneYamlReader {
+ public:
+  SceneYamlReader(const std::string& source, const SceneLoadOptions& options)
+      : y_(source), options_(options), base_dir_(scene_detail::parentDir(source)) {}
+
+  Scene read(const std::string& text) {
+    Scene scene;
+    scene.source = y_.file();
+    const YAML::Node root = y_.load(text);
+    if (!root.IsMap()) y_.fail(root, "expected a PlanningScene mapping at the top level");
+
+    if (YamlReader::has(root, "name")) scene.name = y_.string(root["name"], "name");
+    if (YamlReader::has(root, "robot_model_name"))
+      scene.robot_model_name = y_.string(root["robot_model_name"], "robot_model_name");
+    if (YamlReader::has(root, "robot_state")) readRobotState(root["robot_state"], scene);
+    if (YamlReader::has(root, "fixed_frame_transforms"))
+      readFixedFrames(root["fixed_frame_transforms"], scene);
+    if (YamlReader::has(root, "allowed_collision_matrix"))
+      readAcm(root["allowed_collision_matrix"], scene);
+    if (YamlReader::has(root, "link_padding") || YamlReader::has(root, "link_scale"))
+      scene.warnings.push_back(y_.file() + ": link_padding/link_scale ignored");
+
+    const bool has_world = YamlReader::has(root, "world");
+    if (has_world || YamlReader::has(root, "collision_objects")) {
+      const YAML::Node world = has_world ? root["world"] : root;  // or a bare World message
+      if (!world.IsMap()) y_.fail(world, "world: expected a mapping");
+      if (YamlReader::has(world, "collision_objects")) {
+        const YAML::Node objects =
+            y_.sequence(world["collision_objects"], "world.collision_objects");
+        for (std::size_t i = 0; i < objects.size(); ++i) readObject(objects[i], i, scene);
+      }
+      if (YamlReader::has(world, "octomap")) {
+        const YAML::Node om = world["octomap"];
+        const bool empty = om.IsMap() && YamlReader::has(om, "octomap") &&
+                           YamlReader::has(om["octomap"], "data") &&
+                           om["octomap"]["data"].IsSequence() && om["octomap"]["data"].size() == 0;
+        if (!empty) scene.warnings.push_back(y_.at(om) + ": octomap not modelled (ignored)");
+      }
+    }
+    if (YamlReader::has(root, "robot_state") &&
+        YamlReader::has(root["robot_state"], "attached_collision_objects")) {
+      const YAML::Node att = root["robot_state"]["attached_collision_objects"];
+      if (att.IsSequence() && att.size() > 0)
+        scene.warnings.push_back(y_.at(att) + ": " + std::to_string(att.size()) +
+                                 " attached collision object(s) not modelled (ignored)");
+    }
+
+    // The file's own frames (world and fixed frames) are placed now; robot frames later.
+    resolveFrames(scene, FrameMap{}, /*require_all=*/false);
+    return scene;
+  }
+
+ private:
+  void readRobotState(const YAML::Node& rs, Scene& scene) {
+    if (!rs.IsMap()) y_.fail(rs, "robot_state: expected a mapping");
+    if (YamlReader::has(rs, "joint_state")) {
+      const YAML::Node js = rs["joint_state"];
+      if (YamlReader::has(js, "name") || YamlReader::has(js, "position")) {
+        const YAML::Node names =
+            y_.sequence(y_.require(js, "name", "robot_state.joint_state"), "joint_state.name");
+        const YAML::Node pos = y_.sequence(y_.require(js, "position", "robot_state.joint_state"),
+                                           "joint_state.position");
+        if (names.size() != pos.size())
+          y_.fail(js, "robot_state.joint_state: " + std::to_string(names.size()) +
+                          " names but " + std::to_string(pos.size()) + " positions");
+        for (std::size_t i = 0; i < names.size(); ++i) {
+          const std::string n = y_.string(names[i], "joint_state.name");
+          scene.robot_state[n] = y_.number(pos[i], "joint_state.position of '" + n + "'");
+        }
+      }
+    }
+    if (YamlReader::has(rs, "multi_dof_joint_state")) {
+      const YAML::Node md = rs["multi_dof_joint_state"];
+      if (YamlReader::has(md, "transforms")) {
+        const YAML::Node tr = y_.sequence(md["transforms"], "multi_dof_joint_state.transforms");
+        const YAML::Node names = YamlReader::optional(md, "joint_names");
+        for (std::size_t i = 0; i < tr.size(); ++i) {
+          const Eigen::Isometry3d X = y_.transform(tr[i], "multi_dof_joint_state.transforms");
+          if (!X.isApprox(Eigen::Isometry3d::Identity(), 1e-12)) {
+            std::string jn = (names.IsSequence() && i < names.size())
+                                 ? y_.string(names[i], "joint_names")
+                                 : std::to_string(i);
+            scene.warnings.push_back(y_.at(tr[i]) + ": multi-DOF joint '" + jn +
+                                     "' has a non-identity transform, not modelled");
+          }
+        }
+      }
+    }
+  }
+
+  void readFixedFrames(const YAML::Node& list, Scene& scene) {
+    y_.sequence(list, "fixed_frame_transforms");
+    for (const auto& t : list) {
+      const std::string child =
+          y_.string(y_.require(t, "child_frame_id", "fixed_frame_transforms"), "child_frame_id");
+      const Eigen::Isometry3d X =
+          y_.transform(y_.require(t, "transform", "fixed frame '" + child + "'"),
+                       "fixed frame '" + child + "'");
+      std::string key = (!child.empty() && child[0] == '/') ? child.substr(1) : child;
+      scene.fixed_frames[key] = X;
+    }
+  }
+
+  void readAcm(const YAML::Node& acm, Scene& scene) {
+    if (!acm.IsMap()) y_.fail(acm, "allowed_collision_matrix: expected a mapping");
+    if (YamlReader::has(acm, "entry_names") || YamlReader::has(acm, "entry_values")) {
+      const YAML::Node names = y_.sequence(
+          y_.require(acm, "entry_names", "allowed_collision_matrix"), "entry_names");
+      const YAML::Node values = y_.sequence(
+          y_.require(acm, "entry_values", "allowed_collision_matrix"), "entry_values");
+      const std::size_t n = names.size();
+      if (values.size() != n)
+        y_.fail(values, "allowed_collision_matrix: " + std::to_string(n) + " entry_names but " +
+                            std::to_string(values.size()) + " rows of entry_values");
+      std::vector<std::string> name(n);
+      for (std::size_t i = 0; i < n; ++i) name[i] = y_.string(names[i], "entry_names");
+      for (std::size_t i = 0; i < n; ++i) {
+        // Rows are either plain lists of booleans or {enabled: [...]} (moveit_msgs).
+        // (yaml-cpp's Node::operator= writes through to the tree, so no reassignment here.)
+        const YAML::Node row = values[i].IsMap()
+                                   ? y_.require(values[i], "enabled", "allowed_collision_matrix row")
+                                   : YAML::Node(values[i]);
+        y_.sequence(row, "allowed_collision_matrix row '" + name[i] + "'");
+        if (row.size() != n)
+          y_.fail(row, "allowed_collision_matrix row '" + name[i] + "': " +
+                           std::to_string(row.size()) + " values for " + std::to_string(n) +
+                           " names");
+        for (std::size_t j = 0; j < n; ++j)
+          if (boolean(row[j], "allowed_collision_matrix row '" + name[i] + "'") && i != j)
+            scene.allowed_collisions.allow(name[i], name[j]);
+      }
+    }
+    if (YamlReader::has(acm, "default_entry_names")) {
+      const YAML::Node names = y_.sequence(acm["default_entry_names"], "default_entry_names");
+      const YAML::Node values =
+          y_.sequence(y_.require(acm, "default_entry_values", "allowed_collision_matrix"),
+                      "default_entry_values");
+      if (values.size() != names.size())
+        y_.fail(values, "allowed_collision_matrix: default_entry_names and default_entry_values "
+                        "differ in length");
+      for (std::size_t i = 0; i < names.size(); ++i)
+        if (boolean(values[i], "default_entry_values"))
+          scene.allowed_collisions.allowAlways(y_.string(names[i], "default_entry_names"));
+    }
+  }
+
+  bool boolean(const YAML::Node& n, const std::string& element) const {
+    if (!n.IsScalar()) y_.fail(n, element + ": expected a boolean");
+    try {
+      return n.as<bool>();
+    } catch (const YAML::Exception&) {
+      y_.fail(n, element + ": expected a boolean, got '" + n.Scalar() + "'");
+    }
+  }
+
+  void readObject(const YAML::Node& obj, std::size_t index, Scene& scene) {
+    const std::string fallback = "collision object #" + std::to_string(index);
+    if (!obj.IsMap()) y_.fail(obj, fallback + ": expected a mapping");
+    const std::string id = y_.string(y_.require(obj, "id", fallback), fallback + " id");
+    const std::string elem = "object '" + id + "'";
+    if (id.empty()) y_.fail(obj, fallback + ": empty id");
+
+    if (YamlReader::has(obj, "operation")) {
+      const YAML::Node op = obj["operation"];
+      const std::string s = lower(y_.string(op, elem + " operation"));
+      if (!(s == "0" || s == "add"))
+        y_.fail(op, elem + ": operation '" + op.Scalar() +
+                        "' not supported (only ADD; a scene file lists whole objects)");
+    }
+    std::string frame;
+    if (YamlReader::has(obj, "header") && YamlReader::has(obj["header"], "frame_id"))
+      frame = y_.string(obj["header"]["frame_id"], elem + " header.frame_id");
+    if (!frame.empty() && frame[0] == '/') frame = frame.substr(1);
+
+    Eigen::Isometry3d X_FObj = Eigen::Isometry3d::Identity();
+    if (YamlReader::has(obj, "pose")) X_FObj = y_.pose(obj["pose"], elem + " pose");
+
+    struct Part {
+      AnyShape shape;
+      Eigen::Isometry3d X_ObjS;
+      std::string description;
+    };
+    std::vector<Part> parts;
+
+    if (YamlReader::has(obj, "primitives")) {
+      const YAML::Node prims = y_.sequence(obj["primitives"], elem + " primitives");
+      const YAML::Node poses = YamlReader::optional(obj, "primitive_poses");
+      if (prims.size() > 0 && (!poses.IsDefined() || poses.IsNull()))
+        y_.fail(obj, elem + ": missing field 'primitive_poses'");
+      if (prims.size() > 0) {
+        y_.sequence(poses, elem + " primitive_poses");
+        if (poses.size() != prims.size())
+          y_.fail(poses, elem + ": " + std::to_string(prims.size()) + " primitives but " +
+                             std::to_string(poses.size()) + " primitive_poses");
+      }
+      for (std::size_t k = 0; k < prims.size(); ++k) {
+        const std::string pe = elem + " primitive " + std::to_string(k);
+        AnyShape s = primitive(prims[k], pe);
+        parts.push_back({std::move(s), y_.pose(poses[k], pe + " pose"), pe});
+      }
+    }
+    if (YamlReader::has(obj, "meshes")) {
+      const YAML::Node meshes = y_.sequence(obj["meshes"], elem + " meshes");
+      const YAML::Node poses = YamlReader::optional(obj, "mesh_poses");
+      if (meshes.size() > 0) {
+        if (!poses.IsDefined() || poses.IsNull()) y_.fail(obj, elem + ": missing field 'mesh_poses'");
+        y_.sequence(poses, elem + " mesh_poses");
+        if (poses.size() != meshes.size())
+          y_.fail(poses, elem + ": " + std::to_string(meshes.size()) + " meshes but " +
+                             std::to_string(poses.size()) + " mesh_poses");
+      }
+      for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const std::string me = elem + " mesh " + std::to_string(k);
+        AnyShape s = meshShape(meshes[k], me);
+        parts.push_back({std::move(s), y_.pose(poses[k], me + " pose"), me});
+      }
+    }
+    if (YamlReader::has(obj, "planes")) {
+      const YAML::Node planes = obj["planes"];
+      if (planes.IsSequence() && planes.size() > 0)
+        y_.fail(planes, elem + ": planes are unbounded and not supported as obstacles");
+    }
+    if (parts.empty())
+      y_.fail(obj, elem + ": no primitives or meshes (an empty object cannot be checked)");
+
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      Obstacle o;
+      o.object_id = id;
+      o.name = parts.size() == 1 ? id : id + "/" + std::to_string(k);
+      o.frame_id = frame;
+      o.X_FO = X_FObj * parts[k].X_ObjS;
+      o.X_WO = o.X_FO;
+      o.frame_resolved = false;
+      o.description = describeShape(parts[k].shape) + " (" + y_.file() + ", " +
+                      parts[k].description + ")";
+      o.shape = std::move(parts[k].shape);
+      scene.obstacles.push_back(std::move(o));
+    }
+  }
+
+  AnyShape primitive(const YAML::Node& p, const std::string& pe) const {
+    if (!p.IsMap()) y_.fail(p, pe + ": expected a mapping {type, dimensions}");
+    const YAML::Node t = y_.require(p, "type", pe);
+    const std::string ts = lower(y_.string(t, pe + " type"));
+    int type = 0;
+    if (ts == "box" || ts == "1") type = kBoxType;
+    else if (ts == "sphere" || ts == "2") type = kSphereType;
+    else if (ts == "cylinder" || ts == "3") type = kCylinderType;
+    else if (ts == "cone" || ts == "4") type = kConeType;
+    else y_.fail(t, pe + ": unknown primitive type '" + t.Scalar() + "'");
+    const YAML::Node dims = y_.sequence(y_.require(p, "dimensions", pe), pe + " dimensions");
+    const std::size_t want = type == kBoxType ? 3 : type == kSphereType ? 1 : 2;
+    if (dims.size() != want)
+      y_.fail(dims, pe + ": " + t.Scalar() + " needs " + std::to_string(want) +
+                        " dimensions, got " + std::to_string(dims.size()));
+    double d[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < want; ++i) {
+      d[i] = y_.number(dims[i], pe + " dimensions");
+      scene_detail::checkSize(d[i], "dimension " + std::to_string(i), y_.at(dims) + ": " + pe);
+    }
+    switch (type) {
+      case kBoxType: return Box::fromSize(Eigen::Vector3d(d[0], d[1], d[2]));
+      case kSphereType: return Sphere{d[0]};
+      case kCylinderType: return Cylinder::fromLength(d[1], d[0]);  // [height, radius]
+      default: return Cone::fromLength(d[1], d[0]);                  // [height, radius]
+    }
+  }
+
+  AnyShape meshShape(const YAML::Node& m, const std::string& me) const {
+    if (!m.IsMap()) y_.fail(m, me + ": expected a mapping");
+    if (YamlReader::has(m, "resource")) {
+      const std::string uri = y_.string(m["resource"], me + " resource");
+      Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+      const char* skey = YamlReader::has(m, "dimensions") ? "dimensions"
+                         : YamlReader::has(m, "scale")    ? "scale"
+                                                          : nullptr;
+      if (skey) {
+        scale = y_.vector3(m[skey], me + " " + skey);
+        for (int i = 0; i < 3; ++i)
+          if (!(scale[i] > 0)) y_.fail(m[skey], me + ": mesh scale must be positive");
+      }
+      const std::string where = y_.at(m) + ": " + me;
+      const std::string file = scene_detail::resolveMeshUri(uri, base_dir_, options_, where);
+      return scene_detail::meshFileHull(file, scale, where);
+    }
+    const YAML::Node verts = y_.sequence(y_.require(m, "vertices", me), me + " vertices");
+    std::vector<Eigen::Vector3d> pts;
+    pts.reserve(verts.size());
+    for (const auto& v : verts) pts.push_back(y_.vector3(v, me + " vertex"));
+    if (pts.empty()) y_.fail(verts, me + ": mesh has no vertices");
+    if (YamlReader::has(m, "triangles")) {
+      const YAML::Node tris = y_.sequence(m["triangles"], me + " triangles");
+      for (const auto& t : tris) {
+        const YAML::Node idx =
+            t.IsMap() ? y_.require(t, "vertex_indices", me + " triangle") : YAML::Node(t);
+        y_.sequence(idx, me + " triangle");
+        if (idx.size() != 3) y_.fail(idx, me + ": a triangle needs 3 vertex indices");
+        for (const auto& i : idx) {
+          const int k = y_.integer(i, me + " triangle index");
+          if (k < 0 || static_cast<std::size_t>(k) >= pts.size())
+            y_.fail(i, me + ": triangle index " + std::to_string(k) + " out of range (" +
+                           std::to_string(pts.size()) + " vertices)");
+        }
+      }
+    }
+    return scene_detail::pointsHull(pts, y_.at(m) + ": " + me);
+  }
+
+  YamlReader y_;
+  const SceneLoadOptions& options_;
+  std::string base_dir_;
+};
+
+}  // namespace
+
+Scene parsePlanningSceneYaml(const std::string& text, const std::string& source,
+                             const SceneLoadOptions& options) {
+  return SceneYamlReader(source, options).read(text);
+}
+
+Scene loadPlanningSceneYaml(const std::string& path, const SceneLoadOptions& options) {
+  return parsePlanningSceneYaml(scene_detail::readTextFile(path), path, options);
+}
+
+}  // namespace dss

@@ -1,0 +1,246 @@
+// Reader of MoveIt's `.scene` text format, old and new versions.
+#include "dss/scene/scene_text.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include "dss/scene/scene_error.h"
+#include "scene_util.h"
+
+namespace dss {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return std::string();
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> tokens(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  std::string t;
+  while (in >> t) out.push_back(t);
+  return out;
+}
+
+class SceneTextReader {
+ public:
+  SceneTextReader(const std::string& text, std::string source) : source_(std::move(source)) {
+    std::istringstream in(text);
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      line = trim(line);
+      if (!line.empty()) lines_.push_back({line, number});
+    }
+  }
+
+  Scene read() {
+    Scene scene;
+    scene.source = source_;
+    if (lines_.empty()) throw SceneError(source_ + ": empty .scene file");
+    scene.name = lines_[0].text;
+    // "(name)+" is how some writers mark the name; keep what is between the parentheses.
+    if (scene.name.size() > 2 && scene.name.front() == '(') {
+      const auto close = scene.name.find(')');
+      if (close != std::string::npos) scene.name = scene.name.substr(1, close - 1);
+    }
+    next_ = 1;
+    bool ended = false;
+    while (next_ < lines_.size()) {
+      const Line& l = lines_[next_++];
+      if (l.text == ".") {
+        ended = true;
+        break;
+      }
+      if (l.text[0] != '*') fail(l, "expected '* <object id>' or '.', got '" + l.text + "'");
+      readObject(trim(l.text.substr(1)), l, scene);
+    }
+    if (!ended) scene.warnings.push_back(source_ + ": no final '.' line");
+    for (std::size_t i = next_; i < lines_.size(); ++i)
+      scene.warnings.push_back(at(lines_[i]) + ": text after the final '.' ignored");
+    return scene;
+  }
+
+ private:
+  struct Line {
+    std::string text;
+    int number;
+  };
+
+  std::string at(const Line& l) const { return source_ + ":" + std::to_string(l.number); }
+  [[noreturn]] void fail(const Line& l, const std::string& msg) const {
+    throw SceneError(at(l) + ": " + msg);
+  }
+
+  const Line& nextLine(const std::string& what) {
+    if (next_ >= lines_.size()) {
+      const int last = lines_.empty() ? 0 : lines_.back().number;
+      throw SceneError(source_ + ":" + std::to_string(last) + ": file ends before " + what);
+    }
+    return lines_[next_++];
+  }
+
+  double parseNumber(const std::string& tok, const Line& l, const std::string& what) const {
+    char* end = nullptr;
+    const double v = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0')
+      fail(l, what + ": expected a number, got '" + tok + "'");
+    return v;
+  }
+
+  /// Exactly n numbers on the next line; finite unless `allow_nan` (quaternions check later).
+  std::vector<double> numbers(std::size_t n, const std::string& what, const Line** where = nullptr,
+                              bool allow_nan = false) {
+    const Line& l = nextLine(what);
+    if (where) *where = &l;
+    const auto t = tokens(l.text);
+    if (t.size() != n)
+      fail(l, what + ": expected " + std::to_string(n) + " numbers, got '" + l.text + "'");
+    std::vector<double> v;
+    for (const auto& s : t) {
+      v.push_back(parseNumber(s, l, what));
+      if (!allow_nan && !std::isfinite(v.back())) fail(l, what + ": non-finite number");
+    }
+    return v;
+  }
+
+  std::size_t count(const Line& l, const std::string& what) const {
+    const auto t = tokens(l.text);
+    if (t.size() != 1) fail(l, what + ": expected a count, got '" + l.text + "'");
+    char* end = nullptr;
+    const long v = std::strtol(t[0].c_str(), &end, 10);
+    if (*end != '\0' || v < 0) fail(l, what + ": expected a count, got '" + l.text + "'");
+    return static_cast<std::size_t>(v);
+  }
+
+  Eigen::Isometry3d pose(const std::string& what) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    const auto p = numbers(3, what + " position");
+    const Line* ql = nullptr;
+    const auto q = numbers(4, what + " orientation (x y z w)", &ql, true);
+    X.linear() = scene_detail::checkedQuaternion(q[0], q[1], q[2], q[3], at(*ql) + ": " + what)
+                     .toRotationMatrix();
+    X.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+    return X;
+  }
+
+  void readObject(const std::string& id, const Line& header, Scene& scene) {
+    if (id.empty()) fail(header, "object without an id");
+    const std::string elem = "object '" + id + "'";
+    // MoveIt's rule: a line with spaces after "* id" is the object position (new format).
+    const Line& probe = nextLine(elem + " shape count");
+    Eigen::Isometry3d X_WObj = Eigen::Isometry3d::Identity();
+    bool new_format = false;
+    std::size_t n_shapes = 0;
+    if (probe.text.find_first_of(" \t") != std::string::npos) {
+      new_format = true;
+      --next_;
+      X_WObj = pose(elem + " pose");
+      n_shapes = count(nextLine(elem + " shape count"), elem + " shape count");
+    } else {
+      n_shapes = count(probe, elem + " shape count");
+    }
+    if (n_shapes == 0) fail(probe, elem + ": no shapes (an empty object cannot be checked)");
+
+    std::vector<Obstacle> parts;
+    for (std::size_t k = 0; k < n_shapes; ++k) {
+      const std::string se = elem + " shape " + std::to_string(k);
+      const Line& tl = nextLine(se + " type");
+      const std::string type = tl.text;
+      AnyShape shape;
+      const Line* dl = nullptr;
+      if (type == "box") {
+        const auto d = numbers(3, se + " box size", &dl);
+        for (int i = 0; i < 3; ++i) scene_detail::checkSize(d[i], "box size", at(*dl) + ": " + se);
+        shape = Box::fromSize(Eigen::Vector3d(d[0], d[1], d[2]));
+      } else if (type == "sphere") {
+        const auto d = numbers(1, se + " sphere radius", &dl);
+        scene_detail::checkSize(d[0], "radius", at(*dl) + ": " + se);
+        shape = Sphere{d[0]};
+      } else if (type == "cylinder" || type == "cone") {
+        const auto d = numbers(2, se + " " + type + " radius and length", &dl);
+        scene_detail::checkSize(d[0], "radius", at(*dl) + ": " + se);
+        scene_detail::checkSize(d[1], "length", at(*dl) + ": " + se);
+        if (type == "cylinder") shape = Cylinder::fromLength(d[0], d[1]);
+        else shape = Cone::fromLength(d[0], d[1]);
+      } else if (type == "mesh") {
+        shape = readMesh(se, tl);
+      } else if (type == "plane") {
+        fail(tl, se + ": planes are unbounded and not supported as obstacles");
+      } else {
+        fail(tl, se + ": unknown shape type '" + type + "'");
+      }
+      const Eigen::Isometry3d X_ObjS = pose(se);
+      numbers(4, se + " colour (r g b a)");
+      Obstacle o;
+      o.object_id = id;
+      o.X_FO = X_WObj * X_ObjS;
+      o.X_WO = o.X_FO;
+      o.description = describeShape(shape) + " (" + at(tl) + ", " + se + ")";
+      o.shape = std::move(shape);
+      parts.push_back(std::move(o));
+    }
+    if (new_format) {
+      const std::size_t n_sub = count(nextLine(elem + " subframe count"), elem + " subframe count");
+      for (std::size_t k = 0; k < n_sub; ++k) {
+        nextLine(elem + " subframe name");
+        pose(elem + " subframe");
+      }
+    }
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      parts[k].name = parts.size() == 1 ? id : id + "/" + std::to_string(k);
+      scene.obstacles.push_back(std::move(parts[k]));
+    }
+  }
+
+  // "v t" then v vertices and t triangles; MoveIt reads them as a token stream, so line
+  // breaks inside the block are free. Triangles are checked but only the vertices matter.
+  AnyShape readMesh(const std::string& se, const Line& tl) {
+    const Line& cl = nextLine(se + " mesh counts");
+    const auto c = tokens(cl.text);
+    if (c.size() != 2) fail(cl, se + ": expected 'vertex_count triangle_count'");
+    const std::size_t nv = count({c[0], cl.number}, se + " vertex count");
+    const std::size_t nt = count({c[1], cl.number}, se + " triangle count");
+    std::vector<double> vals;
+    const std::size_t want = 3 * nv + 3 * nt;
+    const Line* last = &cl;
+    while (vals.size() < want) {
+      const Line& l = nextLine(se + " mesh data");
+      last = &l;
+      for (const auto& t : tokens(l.text)) vals.push_back(parseNumber(t, l, se + " mesh data"));
+      if (vals.size() > want) fail(l, se + ": more mesh numbers than the counts announce");
+    }
+    std::vector<Eigen::Vector3d> pts(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      pts[i] = Eigen::Vector3d(vals[3 * i], vals[3 * i + 1], vals[3 * i + 2]);
+      if (!pts[i].allFinite()) fail(*last, se + ": non-finite mesh vertex " + std::to_string(i));
+    }
+    for (std::size_t i = 3 * nv; i < want; ++i)
+      if (vals[i] < 0 || vals[i] >= double(nv) || vals[i] != std::floor(vals[i]))
+        fail(*last, se + ": bad triangle index " + std::to_string(vals[i]));
+    return scene_detail::pointsHull(pts, at(tl) + ": " + se);
+  }
+
+  std::string source_;
+  std::vector<Line> lines_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+Scene parseSceneText(const std::string& text, const std::string& source) {
+  return SceneTextReader(text, source).read();
+}
+
+Scene loadSceneText(const std::string& path) {
+  return parseSceneText(scene_detail::readTextFile(path), path);
+}
+
+}  // namespace dss

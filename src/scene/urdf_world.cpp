@@ -1,0 +1,239 @@
+// Reader of a URDF used as a world: every link's collision geometry at its pose with all
+// joints held still (see urdf_world.h for the decision on movable joints).
+#include "dss/scene/urdf_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+#include <console_bridge/console.h>
+
+#include "dss/scene/scene_error.h"
+#include "scene_util.h"
+
+namespace dss {
+
+namespace {
+
+// Collects what urdfdom reports through console_bridge while it parses, so that its reason
+// for refusing a file ends up in our exception instead of on stderr only.
+class CapturingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+  }
+  std::vector<std::string> messages;
+};
+
+class CaptureGuard {
+ public:
+  explicit CaptureGuard(CapturingHandler* h) { console_bridge::useOutputHandler(h); }
+  ~CaptureGuard() { console_bridge::restorePreviousOutputHandler(); }
+};
+
+Eigen::Isometry3d toIsometry(const urdf::Pose& p, const std::string& where) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = scene_detail::checkedQuaternion(p.rotation.x, p.rotation.y, p.rotation.z,
+                                               p.rotation.w, where)
+                   .toRotationMatrix();
+  X.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  if (!X.translation().allFinite()) throw SceneError(where + ": non-finite position");
+  return X;
+}
+
+// Number of <collision> children of each <link>, by link name, from the XML itself.
+std::map<std::string, int> countCollisionElements(const std::string& text,
+                                                  const std::string& path) {
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) {
+    std::ostringstream s;
+    s << path << ":" << doc.ErrorRow() << ":" << doc.ErrorCol()
+      << ": malformed XML: " << doc.ErrorDesc();
+    throw SceneError(s.str());
+  }
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (!robot) throw SceneError(path + ": no <robot> element");
+  std::map<std::string, int> counts;
+  for (const TiXmlElement* link = robot->FirstChildElement("link"); link;
+       link = link->NextSiblingElement("link")) {
+    const char* name = link->Attribute("name");
+    int n = 0;
+    for (const TiXmlElement* c = link->FirstChildElement("collision"); c;
+         c = c->NextSiblingElement("collision"))
+      ++n;
+    counts[name ? name : ""] += n;
+  }
+  return counts;
+}
+
+class UrdfWorldReader {
+ public:
+  UrdfWorldReader(const std::string& path, const SceneLoadOptions& options)
+      : path_(path), options_(options), base_dir_(scene_detail::parentDir(path)) {}
+
+  Scene read() {
+    const std::string text = scene_detail::readTextFile(path_);
+    const auto xml_counts = countCollisionElements(text, path_);
+
+    CapturingHandler capture;
+    urdf::ModelInterfaceSharedPtr model;
+    {
+      CaptureGuard guard(&capture);
+      model = urdf::parseURDF(text);
+    }
+    if (!model) {
+      std::string msg = path_ + ": urdfdom refused the URDF";
+      for (const auto& m : capture.messages) msg += "; " + m;
+      throw SceneError(msg);
+    }
+    Scene scene;
+    scene.source = path_;
+    scene.name = model->getName();
+    for (const auto& m : capture.messages) scene.warnings.push_back(path_ + ": urdfdom: " + m);
+
+    // Joint values: given, else 0 (clamped into the limits); mimic joints follow.
+    std::set<std::string> unused;
+    for (const auto& kv : options_.joint_values) unused.insert(kv.first);
+    std::function<double(const urdf::Joint&, int)> value = [&](const urdf::Joint& j,
+                                                                int depth) -> double {
+      const std::string where = path_ + ": joint '" + j.name + "'";
+      if (depth > 64) throw SceneError(where + ": mimic chain too long (a cycle?)");
+      if (j.mimic) {
+        auto it = model->joints_.find(j.mimic->joint_name);
+        if (it == model->joints_.end())
+          throw SceneError(where + ": mimics unknown joint '" + j.mimic->joint_name + "'");
+        return j.mimic->multiplier * value(*it->second, depth + 1) + j.mimic->offset;
+      }
+      double v = 0.0;
+      auto given = options_.joint_values.find(j.name);
+      if (given != options_.joint_values.end()) {
+        v = given->second;
+        unused.erase(j.name);
+        if (!std::isfinite(v)) throw SceneError(where + ": non-finite value");
+      }
+      if (j.type != urdf::Joint::CONTINUOUS && j.limits && j.limits->lower <= j.limits->upper)
+        v = std::min(std::max(v, j.limits->lower), j.limits->upper);
+      return v;
+    };
+
+    std::map<std::string, Eigen::Isometry3d> X_WL;
+    std::function<void(const urdf::Link&, const Eigen::Isometry3d&)> visit =
+        [&](const urdf::Link& link, const Eigen::Isometry3d& X) {
+          X_WL[link.name] = X;
+          for (const auto& j : link.child_joints) {
+            const std::string where = path_ + ": joint '" + j->name + "'";
+            Eigen::Isometry3d X_PJ = toIsometry(j->parent_to_joint_origin_transform, where);
+            Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+            switch (j->type) {
+              case urdf::Joint::FIXED: break;
+              case urdf::Joint::REVOLUTE:
+              case urdf::Joint::CONTINUOUS:
+              case urdf::Joint::PRISMATIC: {
+                if (options_.urdf_require_fixed_joints)
+                  throw SceneError(where + ": movable joint in a URDF world (only fixed joints "
+                                           "are accepted with urdf_require_fixed_joints)");
+                const double q = value(*j, 0);
+                Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
+                if (!axis.allFinite() || axis.norm() < 1e-12)
+                  throw SceneError(where + ": zero or non-finite axis");
+                axis.normalize();
+                if (j->type == urdf::Joint::PRISMATIC) motion.translation() = q * axis;
+                else motion.linear() = Eigen::AngleAxisd(q, axis).toRotationMatrix();
+                std::ostringstream s;
+                s << where << ": movable joint held at " << q << " in the world";
+                scene.warnings.push_back(s.str());
+                break;
+              }
+              default:
+                throw SceneError(where + ": floating and planar joints are not supported in a "
+                                         "URDF world");
+            }
+            auto child = model->getLink(j->child_link_name);
+            if (!child) throw SceneError(where + ": missing child link '" + j->child_link_name + "'");
+            visit(*child, X * X_PJ * motion);
+          }
+        };
+    const auto root = model->getRoot();
+    if (!root) throw SceneError(path_ + ": no root link");
+    visit(*root, Eigen::Isometry3d::Identity());
+    for (const auto& name : unused)
+      throw SceneError(path_ + ": joint value given for '" + name + "', which the URDF lacks");
+
+    // Links in file order would be nicer, but urdfdom keeps a map: sort by name for a
+    // deterministic order.
+    for (const auto& [name, link] : model->links_) {
+      const int in_xml = xml_counts.count(name) ? xml_counts.at(name) : 0;
+      if (static_cast<int>(link->collision_array.size()) != in_xml)
+        throw SceneError(path_ + ": link '" + name + "' has " + std::to_string(in_xml) +
+                         " <collision> elements but urdfdom read " +
+                         std::to_string(link->collision_array.size()) +
+                         " (an unsupported geometry tag?)");
+      const auto& cols = link->collision_array;
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        const std::string where = path_ + ": link '" + name + "' collision " + std::to_string(k);
+        const auto& c = cols[k];
+        if (!c->geometry) throw SceneError(where + ": no geometry");
+        Obstacle o;
+        o.object_id = name;
+        o.name = cols.size() == 1 ? name : name + "/" + std::to_string(k);
+        o.shape = shape(*c->geometry, where);
+        o.X_FO = X_WL.at(name) * toIsometry(c->origin, where + " origin");
+        o.X_WO = o.X_FO;
+        o.description = describeShape(o.shape) + " (" + where + ")";
+        scene.obstacles.push_back(std::move(o));
+      }
+    }
+    return scene;
+  }
+
+ private:
+  AnyShape shape(const urdf::Geometry& g, const std::string& where) const {
+    switch (g.type) {
+      case urdf::Geometry::SPHERE: {
+        const auto& s = static_cast<const urdf::Sphere&>(g);
+        scene_detail::checkSize(s.radius, "radius", where);
+        return Sphere{s.radius};
+      }
+      case urdf::Geometry::BOX: {
+        const auto& b = static_cast<const urdf::Box&>(g);
+        const Eigen::Vector3d size(b.dim.x, b.dim.y, b.dim.z);
+        for (int i = 0; i < 3; ++i) scene_detail::checkSize(size[i], "box size", where);
+        return Box::fromSize(size);
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& c = static_cast<const urdf::Cylinder&>(g);
+        scene_detail::checkSize(c.radius, "radius", where);
+        scene_detail::checkSize(c.length, "length", where);
+        return Cylinder::fromLength(c.radius, c.length);
+      }
+      case urdf::Geometry::MESH: {
+        const auto& m = static_cast<const urdf::Mesh&>(g);
+        const Eigen::Vector3d scale(m.scale.x, m.scale.y, m.scale.z);
+        if (!scale.allFinite() || (scale.array() <= 0).any())
+          throw SceneError(where + ": mesh scale must be positive");
+        const std::string file =
+            scene_detail::resolveMeshUri(m.filename, base_dir_, options_, where);
+        return scene_detail::meshFileHull(file, scale, where);
+      }
+    }
+    throw SceneError(where + ": unsupported geometry");
+  }
+
+  std::string path_;
+  const SceneLoadOptions& options_;
+  std::string base_dir_;
+};
+
+}  // namespace
+
+Scene loadUrdfWorld(const std::string& path, const SceneLoadOptions& options) {
+  return UrdfWorldReader(path, options).read();
+}
+
+}  // namespace dss

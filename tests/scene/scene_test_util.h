@@ -1,0 +1,62 @@
+// Helpers for the scene tests: the shared scene folder (tests skip when it is absent),
+// file listing, and checks on exception messages.
+#pragma once
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <boost/test/unit_test.hpp>
+
+namespace dss_test {
+
+inline std::string scenesDir() { return std::string(DSS_SHARED_DIR) + "/scenes"; }
+
+/// True (and prints why) when the shared scenes are absent: the caller returns.
+inline bool skipWithoutShared() {
+  if (std::filesystem::is_directory(scenesDir())) return false;
+  std::cout << "skipped: " << scenesDir() << " not found\n";
+  return true;
+}
+
+/// Files under dir (recursive) whose name matches `pattern`, sorted.
+inline std::vector<std::string> filesMatching(const std::string& dir, const std::string& pattern) {
+  std::vector<std::string> out;
+  const std::regex re(pattern);
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), re))
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+inline std::string readAll(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs f, which must throw E; returns the message (empty and a failed check otherwise).
+template <class E>
+std::string thrownMessage(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  BOOST_ERROR("expected an exception");
+  return std::string();
+}
+
+inline bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+}  // namespace dss_test

@@ -1,0 +1,82 @@
+// MotionPlanRequest YAML: every MotionBenchMaker request loads (group, start state, joint
+// goals), and bad requests are refused with the file and line.
+#include <filesystem>
+
+#include <boost/test/unit_test.hpp>
+
+#include "dss/scene/plan_request.h"
+#include "dss/scene/scene_error.h"
+#include "scene/scene_test_util.h"
+
+using namespace dss_test;
+
+BOOST_AUTO_TEST_SUITE(plan_request)
+
+BOOST_AUTO_TEST_CASE(all_mbm_requests_load) {
+  if (skipWithoutShared()) return;
+  int n = 0;
+  for (const char* robot : {"mbm_panda", "mbm_ur5"}) {
+    const bool panda = std::string(robot) == "mbm_panda";
+    for (const auto& f : filesMatching(scenesDir() + "/" + robot, "request[0-9]+\\.yaml")) {
+      BOOST_TEST_CONTEXT(f) {
+        const dss::PlanRequest r = dss::loadPlanRequestYaml(f);
+        BOOST_TEST(r.group_name == (panda ? "panda_arm" : "manipulator"));
+        BOOST_TEST(r.start_names.size() == (panda ? 9u : 12u));
+        BOOST_TEST(r.start_positions.size() == r.start_names.size());
+        BOOST_REQUIRE(r.goals.size() == 1u);
+        BOOST_TEST(r.goals[0].joint_constraints.size() == (panda ? 7u : 6u));
+        for (const auto& c : r.goals[0].joint_constraints) {
+          BOOST_TEST(c.tolerance_above == 0.0);
+          BOOST_TEST(c.tolerance_below == 0.0);
+        }
+        if (panda) BOOST_TEST(r.startState().at("panda_finger_joint1") == 0.065);
+        BOOST_TEST(r.warnings.empty());
+        ++n;
+      }
+    }
+  }
+  BOOST_TEST(n == 105);
+}
+
+BOOST_AUTO_TEST_CASE(key_order_and_values) {
+  if (skipWithoutShared()) return;
+  // request0001 of box lists `position` before `joint_name` for some joints.
+  const dss::PlanRequest r =
+      dss::loadPlanRequestYaml(scenesDir() + "/mbm_panda/box/request0001.yaml");
+  const auto& g = r.goals[0].joint_constraints;
+  BOOST_TEST(g[1].joint_name == "panda_joint2");
+  BOOST_TEST(g[1].position == 1.7628);
+  BOOST_TEST(g[2].joint_name == "panda_joint3");
+  BOOST_TEST(g[2].position == 0.1941262264518609);
+  BOOST_TEST(r.planner_id == "BKPIECEGood");
+  BOOST_TEST(r.allowed_planning_time == 60.0);
+  BOOST_TEST(r.num_planning_attempts == 2);
+}
+
+BOOST_AUTO_TEST_CASE(errors) {
+  auto msgOf = [](const std::string& text) {
+    return thrownMessage<dss::SceneError>([&] { dss::parsePlanRequestYaml(text, "req.yaml"); });
+  };
+  const std::string start = "start_state:\n  joint_state:\n    name: [a, b]\n    position: [0, 1]\n";
+  const std::string goal = "goal_constraints:\n  - joint_constraints:\n"
+                           "      - {joint_name: a, position: 1, tolerance_above: 0.1}\n";
+  const dss::PlanRequest ok = dss::parsePlanRequestYaml("group_name: g\n" + start + goal, "ok.yaml");
+  BOOST_TEST(ok.goals[0].joint_constraints[0].tolerance_above == 0.1);
+  std::string m = msgOf(start + goal);
+  BOOST_TEST(contains(m, "group_name"));
+  BOOST_TEST(contains(m, "req.yaml"));
+  m = msgOf("group_name: g\nstart_state:\n  joint_state:\n    name: [a, b]\n    position: [0]\n" + goal);
+  BOOST_TEST(contains(m, "2 names but 1 positions"));
+  BOOST_TEST(contains(m, "req.yaml:4"));
+  m = msgOf("group_name: g\n" + start + "goal_constraints:\n  - joint_constraints:\n"
+            "      - {joint_name: a}\n");
+  BOOST_TEST(contains(m, "joint 'a'"));
+  BOOST_TEST(contains(m, "position"));
+  m = msgOf("group_name: g\n" + start + "goal_constraints:\n  - position_constraints: [{}]\n"
+            "    joint_constraints: []\n");
+  BOOST_TEST(contains(m, "position_constraints"));
+  m = msgOf("group_name: [g\n");
+  BOOST_TEST(contains(m, "malformed YAML"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,121 @@
+// A URDF as a world: the MotionBenchMaker kitchen (5 mesh links, 3 revolute doors held at 0),
+// its package:// original, the joint policy, and malformed XML.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <boost/test/unit_test.hpp>
+
+#include "dss/scene/scene_error.h"
+#include "dss/scene/scene_loader.h"
+#include "dss/scene/urdf_world.h"
+#include "scene/scene_test_util.h"
+
+using namespace dss_test;
+
+namespace {
+std::string kitchenDir() { return scenesDir() + "/mbm_templates/configs/scenes/kitchen"; }
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const auto p = std::filesystem::temp_directory_path() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(urdf_world)
+
+BOOST_AUTO_TEST_CASE(kitchen_loads) {
+  if (skipWithoutShared()) return;
+  const dss::Scene s = dss::loadScene(kitchenDir() + "/kitchen.urdf");
+  BOOST_TEST(s.name == "kitchen");
+  BOOST_TEST(s.obstacles.size() == 5u);
+  for (const auto& o : s.obstacles) {
+    BOOST_TEST(std::holds_alternative<dss::ConvexHull>(o.shape));
+    BOOST_TEST(std::get<dss::ConvexHull>(o.shape).size() >= 4u);
+  }
+  BOOST_TEST(s.warnings.size() == 3u);  // three revolute doors held at 0
+  // cupboard_door_l sits at its joint origin (door joint at 0).
+  for (const auto& o : s.obstacles)
+    if (o.name == "cupboard_door_l")
+      BOOST_TEST((o.X_WO.translation() - Eigen::Vector3d(0.44637, 0.54793, 1.6839)).norm() <
+                 1e-12);
+
+  // The original, with package:// URIs, through a package directory.
+  dss::SceneLoadOptions opt;
+  opt.package_dirs["motion_bench_maker"] = scenesDir() + "/mbm_templates";
+  const dss::Scene orig = dss::loadUrdfWorld(kitchenDir() + "/kitchen.orig.urdf", opt);
+  BOOST_TEST(orig.obstacles.size() == 5u);
+}
+
+BOOST_AUTO_TEST_CASE(kitchen_joint_policy) {
+  if (skipWithoutShared()) return;
+  dss::SceneLoadOptions opt;
+  opt.urdf_require_fixed_joints = true;
+  std::string m = thrownMessage<dss::SceneError>(
+      [&] { dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", opt); });
+  BOOST_TEST(contains(m, "kitchen.urdf"));
+  BOOST_TEST(contains(m, "_joint'"));
+
+  // An open door: rotated about its z axis by the given value (limits [-3.14, 0]).
+  dss::SceneLoadOptions open;
+  open.joint_values["cupboard_door_l_joint"] = -1.0;
+  const dss::Scene s = dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", open);
+  for (const auto& o : s.obstacles)
+    if (o.name == "cupboard_door_l")
+      BOOST_TEST((o.X_WO.linear() -
+                  Eigen::AngleAxisd(-1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix())
+                     .norm() < 1e-12);
+  dss::SceneLoadOptions typo;
+  typo.joint_values["no_such_joint"] = 0.0;
+  m = thrownMessage<dss::SceneError>(
+      [&] { dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", typo); });
+  BOOST_TEST(contains(m, "no_such_joint"));
+}
+
+BOOST_AUTO_TEST_CASE(primitives_and_errors) {
+  const std::string ok = writeTemp("dss_scene_world_ok.urdf", R"(<?xml version="1.0"?>
+<robot name="w">
+  <link name="base">
+    <collision><origin xyz="0 0 1" rpy="0 0 0"/><geometry><box size="1 2 3"/></geometry></collision>
+    <collision><geometry><sphere radius="0.5"/></geometry></collision>
+  </link>
+  <link name="post">
+    <collision><geometry><cylinder radius="0.1" length="2"/></geometry></collision>
+  </link>
+  <joint name="j" type="fixed"><parent link="base"/><child link="post"/>
+    <origin xyz="3 0 0" rpy="0 0 0"/></joint>
+</robot>)");
+  const dss::Scene s = dss::loadUrdfWorld(ok);
+  BOOST_REQUIRE(s.obstacles.size() == 3u);
+  BOOST_TEST(s.warnings.empty());
+  BOOST_TEST(s.obstacles[0].name == "base/0");
+  BOOST_TEST(s.obstacles[0].X_WO.translation().z() == 1.0);
+  BOOST_TEST(s.obstacles[2].name == "post");
+  BOOST_TEST(s.obstacles[2].X_WO.translation().x() == 3.0);
+
+  const std::string broken = writeTemp("dss_scene_world_broken.urdf",
+                                       "<robot name=\"w\">\n  <link name=\"a\">\n  </lnk>\n</robot>\n");
+  std::string m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(broken); });
+  BOOST_TEST(contains(m, broken + ":3"));
+  BOOST_TEST(contains(m, "malformed XML"));
+
+  const std::string capsule = writeTemp("dss_scene_world_capsule.urdf", R"(<robot name="w">
+  <link name="a">
+    <collision><geometry><capsule radius="0.1" length="1"/></geometry></collision>
+    <collision><geometry><sphere radius="0.1"/></geometry></collision>
+  </link>
+</robot>)");
+  m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(capsule); });
+  BOOST_TEST(contains(m, "link 'a'"));
+
+  const std::string negative = writeTemp("dss_scene_world_negative.urdf", R"(<robot name="w">
+  <link name="a"><collision><geometry><mesh filename="missing.stl"/></geometry></collision></link>
+</robot>)");
+  m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(negative); });
+  BOOST_TEST(contains(m, "missing.stl"));
+  BOOST_TEST(contains(m, "link 'a'"));
+  for (const auto& f : {ok, broken, capsule, negative}) std::remove(f.c_str());
+}
+
+BOOST_AUTO_TEST_SUITE_END()

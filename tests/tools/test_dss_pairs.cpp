@@ -1,0 +1,361 @@
+// dss_pairs end to end: the built binary is run on the shared pair samples (checked against
+// their answer files per tier) and on malformed inputs (exit code 2 and a `FILE:N:` message
+// naming the right line).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+const std::string kTool = std::string(DSS_BINARY_DIR) + "/tools/dss_pairs";
+const std::string kSampleDir = std::string(DSS_SHARED_DIR) + "/testdata/pairs_sample";
+const std::vector<std::string> kSamples = {"sample_paper", "sample_near", "sample_primitives",
+                                           "sample_extremes", "sample_touching"};
+const std::vector<std::string> kTiers = {"robust", "near", "touching"};
+
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+  std::vector<std::string> outLines() const {
+    std::vector<std::string> lines;
+    std::istringstream in(out);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    return lines;
+  }
+  std::string firstErrLine() const { return err.substr(0, err.find('\n')); }
+};
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+/// A scratch directory for this test process (removed at exit by the fixture).
+fs::path scratchDir() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() /
+                 ("dss_pairs_test_" + std::to_string(static_cast<long>(::getpid())));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+struct ScratchCleanup {
+  ~ScratchCleanup() {
+    std::error_code ec;
+    fs::remove_all(scratchDir(), ec);
+  }
+};
+BOOST_GLOBAL_FIXTURE(ScratchCleanup);
+
+/// Runs dss_pairs with `args` (already shell-quoted where needed), stdin from `stdin_file`.
+Run runTool(const std::string& args, const std::string& stdin_file = "/dev/null") {
+  const fs::path out = scratchDir() / "out.txt", err = scratchDir() / "err.txt";
+  const std::string cmd = quote(kTool) + " " + args + " < " + quote(stdin_file) + " > " +
+                          quote(out.string()) + " 2> " + quote(err.string());
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = readAll(out);
+  r.err = readAll(err);
+  return r;
+}
+
+fs::path writeFile(const std::string& name, const std::string& text) {
+  const fs::path p = scratchDir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+bool haveSamples() {
+  if (fs::exists(kSampleDir + "/sample_paper.jsonl")) return true;
+  BOOST_TEST_MESSAGE("pair samples absent (" << kSampleDir << "): skipping");
+  return false;
+}
+
+struct TierCounts {
+  std::map<std::string, int> pairs, wrong, caps;
+};
+
+/// Runs one algorithm and mode over every sample file and counts, per tier, the wrong answers
+/// and the cap hits against the answer files.
+TierCounts runSamples(const std::string& algo, const std::string& mode) {
+  TierCounts c;
+  for (const std::string& name : kSamples) {
+    const std::string input = kSampleDir + "/" + name + ".jsonl";
+    const Run r = runTool("--algo " + algo + " --mode " + mode + " " + quote(input));
+    BOOST_REQUIRE_MESSAGE(r.exit_code == 0, name << " " << algo << " " << mode << ": exit "
+                                                 << r.exit_code << ": " << r.err);
+    const std::vector<std::string> got = r.outLines();
+    std::ifstream answers(kSampleDir + "/" + name + ".answers.jsonl");
+    std::size_t i = 0;
+    for (std::string line; std::getline(answers, line); ++i) {
+      BOOST_REQUIRE_LT(i, got.size());
+      const Json want = Json::parse(line);
+      const Json have = Json::parse(got[i]);
+      BOOST_REQUIRE_EQUAL(have.at("id"), want.at("id"));
+      const std::string tier = want.at("tier").get<std::string>();
+      ++c.pairs[tier];
+      const bool wrong = have.at("intersect") != want.at("intersect");
+      if (wrong) {
+        ++c.wrong[tier];
+        BOOST_TEST_MESSAGE("  " << algo << "/" << mode << " wrong: " << want.at("id") << " "
+                                << want.at("category") << " expected "
+                                << want.at("intersect") << " got " << got[i]);
+      }
+      c.caps[tier] += have.at("status") == "iteration_limit";
+    }
+    BOOST_CHECK_EQUAL(i, got.size());
+  }
+  std::ostringstream msg;
+  msg << algo << " --mode " << mode << ":";
+  for (const std::string& t : kTiers)
+    msg << "  " << t << " wrong " << c.wrong[t] << "/" << c.pairs[t] << " caps " << c.caps[t];
+  BOOST_TEST_MESSAGE(msg.str());
+  return c;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(dss_pairs_samples)
+
+BOOST_AUTO_TEST_CASE(exact_dss_and_hybrid_are_never_wrong) {
+  if (!haveSamples()) return;
+  for (const std::string algo : {"dss", "hybrid"}) {
+    TierCounts c = runSamples(algo, "exact");
+    int total = 0;
+    for (const std::string& t : kTiers) {
+      BOOST_CHECK_MESSAGE(c.wrong[t] == 0, algo << " exact: " << c.wrong[t] << " wrong on " << t);
+      total += c.pairs[t];
+    }
+    BOOST_CHECK_EQUAL(total, 295);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(double_and_float_report_their_wrong_answers) {
+  if (!haveSamples()) return;
+  for (const std::string algo : {"dss", "hybrid"}) {
+    TierCounts d = runSamples(algo, "double");
+    BOOST_CHECK_MESSAGE(d.wrong["robust"] == 0, algo << " double wrong on the robust tier");
+    runSamples(algo, "float");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(gjk_and_fcl_report_their_wrong_answers) {
+  if (!haveSamples()) return;
+  for (const std::string mode : {"exact", "double", "float"}) runSamples("gjk", mode);
+  runSamples("fcl", "double");
+}
+
+BOOST_AUTO_TEST_CASE(time_prints_one_summary_per_algorithm) {
+  if (!haveSamples()) return;
+  const Run r = runTool("--algo dss,gjk,fcl --time --repeat 3 --mode double " +
+                        quote(kSampleDir + "/sample_paper.jsonl"));
+  BOOST_REQUIRE_EQUAL(r.exit_code, 0);
+  BOOST_CHECK_EQUAL(r.outLines().size(), 87u);  // the answers of the first algorithm
+  std::istringstream err(r.err);
+  std::vector<std::string> algos;
+  for (std::string line; std::getline(err, line);) {
+    const Json s = Json::parse(line);
+    algos.push_back(s.at("algo"));
+    BOOST_CHECK_EQUAL(s.at("pairs"), 87);
+    BOOST_CHECK_EQUAL(s.at("repetitions"), 3);
+    BOOST_CHECK_GT(s.at("ns_per_pair").get<double>(), 0.0);
+    BOOST_CHECK_EQUAL(s.at("mode"), "double");
+  }
+  BOOST_CHECK((algos == std::vector<std::string>{"dss", "gjk", "fcl"}));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(dss_pairs_input)
+
+const std::string kGood =
+    R"({"id":"g","a":{"type":"sphere","radius":1},"b":{"type":"box","size":[1,1,1],"pose":{"position":[3,0,0],"orientation":[0,0,0,1]}}})";
+
+BOOST_AUTO_TEST_CASE(malformed_lines_stop_with_exit_2_and_the_line) {
+  struct Case {
+    const char* name;
+    std::string bad_line;
+    const char* message_part;
+  };
+  const std::vector<Case> cases = {
+      {"bad_json", R"({"id":"x","a":{"type":"sphere","radius":1},)", "bad JSON"},
+      {"not_object", R"([1,2,3])", "expected a JSON object"},
+      {"unknown_type", R"({"id":"x","a":{"type":"torus","radius":1},"b":{"type":"sphere","radius":1}})",
+       "unknown shape type \"torus\""},
+      {"missing_b", R"({"id":"x","a":{"type":"sphere","radius":1}})", "missing field \"b\""},
+      {"missing_id", R"({"a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1}})",
+       "missing field \"id\""},
+      {"missing_size", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"box"}})",
+       "b: missing field \"size\""},
+      {"missing_length", R"({"id":"x","a":{"type":"cone","radius":1},"b":{"type":"sphere","radius":1}})",
+       "a: missing field \"length\""},
+      {"negative_radius", R"({"id":"x","a":{"type":"sphere","radius":-1},"b":{"type":"sphere","radius":1}})",
+       "a.radius: negative size"},
+      {"negative_box", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"box","size":[1,-2,1]}})",
+       "b.size: negative size"},
+      {"negative_radii", R"({"id":"x","a":{"type":"ellipsoid","radii":[1,1,-0.5]},"b":{"type":"sphere","radius":1}})",
+       "a.radii: negative size"},
+      {"overflow_number", R"({"id":"x","a":{"type":"sphere","radius":1e999},"b":{"type":"sphere","radius":1}})",
+       "overflow"},
+      {"string_size", R"({"id":"x","a":{"type":"capsule","radius":"1","length":1},"b":{"type":"sphere","radius":1}})",
+       "a.radius: expected a number"},
+      {"short_size", R"({"id":"x","a":{"type":"box","size":[1,1]},"b":{"type":"sphere","radius":1}})",
+       "a.size: expected an array of 3 numbers"},
+      {"empty_vertices", R"({"id":"x","a":{"type":"convex","vertices":[]},"b":{"type":"sphere","radius":1}})",
+       "a.vertices: empty vertex list"},
+      {"bad_vertex", R"({"id":"x","a":{"type":"convex","vertices":[[0,0,0],[1,2]]},"b":{"type":"sphere","radius":1}})",
+       "a.vertices[1]: expected an array of 3 numbers"},
+      {"zero_quaternion", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0],"orientation":[0,0,0,0]}}})",
+       "b.pose.orientation: zero quaternion"},
+      {"missing_orientation", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0]}}})",
+       "b.pose: missing field \"orientation\""},
+      {"non_finite_posed_vertex", R"({"id":"x","a":{"type":"convex","vertices":[[1e308,0,0]],"pose":{"position":[1e308,0,0],"orientation":[0,0,0,1]}},"b":{"type":"sphere","radius":1}})",
+       "a.vertices: a posed vertex is not finite"},
+      {"blank_line", "", "empty line"},
+  };
+  for (const Case& c : cases) {
+    // The bad line is line 3 of 4.
+    const fs::path file =
+        writeFile(std::string(c.name) + ".jsonl", kGood + "\n" + kGood + "\n" + c.bad_line + "\n" + kGood + "\n");
+    for (const std::string algo : {"dss", "fcl"}) {
+      const Run r = runTool("--algo " + algo + " " + quote(file.string()));
+      BOOST_CHECK_MESSAGE(r.exit_code == 2, c.name << " " << algo << ": exit " << r.exit_code);
+      const std::string prefix = file.string() + ":3: ";
+      const std::string first = r.firstErrLine();
+      BOOST_CHECK_MESSAGE(first.compare(0, prefix.size(), prefix) == 0,
+                          c.name << ": stderr starts '" << first << "'");
+      BOOST_CHECK_MESSAGE(first.find(c.message_part) != std::string::npos,
+                          c.name << ": '" << first << "' lacks '" << c.message_part << "'");
+      BOOST_CHECK_MESSAGE(r.out.empty(), c.name << ": no answers before the error");
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(stdin_line_numbers_and_unreadable_files) {
+  const fs::path file = writeFile("stdin_bad.jsonl", kGood + "\n{\n");
+  const Run r = runTool("-", file.string());
+  BOOST_CHECK_EQUAL(r.exit_code, 2);
+  BOOST_CHECK_EQUAL(r.firstErrLine().rfind("<stdin>:2: bad JSON", 0), 0u);
+
+  const Run missing = runTool(quote((scratchDir() / "no_such_file.jsonl").string()));
+  BOOST_CHECK_EQUAL(missing.exit_code, 2);
+  BOOST_CHECK(missing.firstErrLine().find("cannot open") != std::string::npos);
+
+  BOOST_CHECK_EQUAL(runTool("--algo nope -").exit_code, 2);
+  BOOST_CHECK_EQUAL(runTool("--mode quad -").exit_code, 2);
+  BOOST_CHECK_EQUAL(runTool("--algo dss,gjk -").exit_code, 2);  // a list needs --time
+  BOOST_CHECK_EQUAL(runTool("--padding -1 -").exit_code, 2);
+  BOOST_CHECK_EQUAL(runTool("--bogus -").exit_code, 2);
+  BOOST_CHECK_EQUAL(runTool("--help").exit_code, 0);
+}
+
+BOOST_AUTO_TEST_CASE(trailing_newline_and_crlf_are_accepted) {
+  const fs::path no_newline = writeFile("no_newline.jsonl", kGood + "\n" + kGood);
+  const fs::path crlf = writeFile("crlf.jsonl", kGood + "\r\n" + kGood + "\r\n");
+  for (const fs::path& p : {no_newline, crlf}) {
+    const Run r = runTool(quote(p.string()));
+    BOOST_CHECK_EQUAL(r.exit_code, 0);
+    BOOST_CHECK_EQUAL(r.outLines().size(), 2u);
+  }
+  const fs::path two_newlines = writeFile("two_newlines.jsonl", kGood + "\n\n");
+  const Run r = runTool(quote(two_newlines.string()));
+  BOOST_CHECK_EQUAL(r.exit_code, 2);
+  BOOST_CHECK(r.firstErrLine().find(":2: empty line") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(output_format_order_and_ids) {
+  const std::string text =
+      R"({"id":7,"a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[3,0,0],"orientation":[0,0,0,1]}}})"
+      "\n"
+      R"({"id":"touch","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[2,0,0],"orientation":[0,0,0,2]}}})"
+      "\n";
+  const fs::path file = writeFile("format.jsonl", text);
+  for (const std::string algo : {"dss", "gjk", "hybrid", "fcl"}) {
+    const Run r = runTool("--algo " + algo + " " + quote(file.string()));
+    BOOST_REQUIRE_EQUAL(r.exit_code, 0);
+    const auto lines = r.outLines();
+    BOOST_REQUIRE_EQUAL(lines.size(), 2u);
+    const Json first = Json::parse(lines[0]), second = Json::parse(lines[1]);
+    BOOST_CHECK_EQUAL(first.at("id"), 7);
+    BOOST_CHECK_EQUAL(first.at("intersect"), false);
+    BOOST_CHECK_EQUAL(first.at("status"), "decided");
+    BOOST_CHECK_EQUAL(second.at("id"), "touch");
+    if (algo != "fcl") {
+      BOOST_CHECK(first.at("iterations").is_number_integer());
+      // Exactly touching spheres (a non-unit quaternion, normalised) count as intersecting.
+      BOOST_CHECK_EQUAL(second.at("intersect"), true);
+    }
+  }
+  const Run r = runTool(quote(file.string()));
+  BOOST_CHECK_EQUAL(r.out.substr(0, r.out.find('\n')),
+                    R"({"id":7,"intersect":false,"status":"decided","iterations":)" +
+                        Json::parse(r.outLines()[0]).at("iterations").dump() + "}");
+}
+
+// The parser must be correctly rounded: 0.30000000000000004 and 0.3 are neighbouring doubles,
+// and two points given as those decimals are distinct; the same decimal twice is one point.
+BOOST_AUTO_TEST_CASE(numbers_are_read_to_the_exact_double) {
+  const std::string text =
+      R"({"id":"same","a":{"type":"convex","vertices":[[0.30000000000000004,0,0]]},"b":{"type":"convex","vertices":[[0.30000000000000004,0,0]]}})"
+      "\n"
+      R"({"id":"next","a":{"type":"convex","vertices":[[0.30000000000000004,0,0]]},"b":{"type":"convex","vertices":[[0.3,0,0]]}})"
+      "\n"
+      R"({"id":"sum","a":{"type":"convex","vertices":[[0.1,0,0]],"pose":{"position":[0.2,0,0],"orientation":[0,0,0,1]}},"b":{"type":"convex","vertices":[[0.30000000000000004,0,0]]}})"
+      "\n";
+  const fs::path file = writeFile("rounding.jsonl", text);
+  for (const std::string algo : {"dss", "hybrid"}) {
+    const Run r = runTool("--mode exact --algo " + algo + " " + quote(file.string()));
+    BOOST_REQUIRE_EQUAL(r.exit_code, 0);
+    const auto lines = r.outLines();
+    BOOST_REQUIRE_EQUAL(lines.size(), 3u);
+    BOOST_CHECK_EQUAL(Json::parse(lines[0]).at("intersect"), true);
+    BOOST_CHECK_EQUAL(Json::parse(lines[1]).at("intersect"), false);
+    // A posed convex shape is posed once in double: fl(0.1 + 0.2) = 0.30000000000000004.
+    BOOST_CHECK_EQUAL(Json::parse(lines[2]).at("intersect"), true);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(padding_is_a_distance_query) {
+  // Unit spheres with centres 3 apart: distance 1.
+  const std::string text =
+      R"({"id":"p","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[3,0,0],"orientation":[0,0,0,1]}}})"
+      "\n"
+      R"({"id":"q","a":{"type":"convex","vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]]},"b":{"type":"box","size":[2,2,2],"pose":{"position":[3,0,0],"orientation":[0,0,0,1]}}})"
+      "\n";
+  const fs::path file = writeFile("padding.jsonl", text);
+  for (const std::string algo : {"dss", "gjk", "hybrid", "fcl"}) {
+    for (const std::string mode : {"exact", "double", "float"}) {
+      for (const auto& [padding, expect] :
+           std::vector<std::pair<std::string, bool>>{{"0", false}, {"0.9", false}, {"1.1", true}}) {
+        const Run r = runTool("--algo " + algo + " --mode " + mode + " --padding " + padding +
+                              " " + quote(file.string()));
+        BOOST_REQUIRE_EQUAL(r.exit_code, 0);
+        for (const std::string& line : r.outLines())
+          BOOST_CHECK_MESSAGE(Json::parse(line).at("intersect") == expect,
+                              algo << " " << mode << " padding " << padding << ": " << line);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
