@@ -168,17 +168,17 @@ struct PassStats {
 struct Algorithm {
   std::string name;
   bool reports_iterations = false;
-  /// Decides every pair, writing 1 (intersect) or 0 into answers.
-  std::function<PassStats(std::uint8_t* answers)> pass;
+  /// Decides pairs [begin, end), writing 1 (intersect) or 0 into answers[begin, end).
+  std::function<PassStats(std::size_t begin, std::size_t end, std::uint8_t* answers)> pass;
 };
 
 using Pairs = std::vector<std::pair<int, int>>;
 
 template <class F>
-PassStats decisionPass(const Pairs& pairs, std::uint8_t* answers, F&& decide) {
+PassStats decisionPass(const Pairs& pairs, std::size_t begin, std::size_t end, std::uint8_t* answers,
+                       F&& decide) {
   PassStats s;
-  const std::size_t m = pairs.size();
-  for (std::size_t k = 0; k < m; ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const Result r = decide(pairs[k].first, pairs[k].second);
     answers[k] = r.intersect;
     s.iterations += r.iterations;
@@ -189,9 +189,9 @@ PassStats decisionPass(const Pairs& pairs, std::uint8_t* answers, F&& decide) {
 }
 
 template <class F>
-PassStats boolPass(const Pairs& pairs, std::uint8_t* answers, F&& decide) {
-  const std::size_t m = pairs.size();
-  for (std::size_t k = 0; k < m; ++k) answers[k] = decide(pairs[k].first, pairs[k].second);
+PassStats boolPass(const Pairs& pairs, std::size_t begin, std::size_t end, std::uint8_t* answers,
+                   F&& decide) {
+  for (std::size_t k = begin; k < end; ++k) answers[k] = decide(pairs[k].first, pairs[k].second);
   return {};
 }
 
@@ -222,36 +222,36 @@ void addSupportAlgorithms(std::vector<Algorithm>& algos, const Pairs& pairs, con
                           const std::vector<B>& b, const std::vector<Af>& af, const std::vector<Bf>& bf,
                           int max_iterations, const std::string& suffix = "") {
   auto dss = [&, max_iterations](Mode mode) {
-    return [&pairs, &a, &b, mode, max_iterations](std::uint8_t* ans) {
+    return [&pairs, &a, &b, mode, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
       Options opt;
       opt.mode = mode;
       opt.max_iterations = max_iterations;
-      return decisionPass(pairs, ans, [&](int i, int j) { return intersect(a[i], b[j], opt); });
+      return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersect(a[i], b[j], opt); });
     };
   };
   algos.push_back({"dss-exact" + suffix, true, dss(Mode::kExact)});
   algos.push_back({"dss-double" + suffix, true, dss(Mode::kDouble)});
   if (!suffix.empty()) return;  // variants (e.g. the sweep's linear scan) only time DSS
-  algos.push_back({"dss-float", true, [&pairs, &af, &bf, max_iterations](std::uint8_t* ans) {
+  algos.push_back({"dss-float", true, [&pairs, &af, &bf, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
                      Options opt;
                      opt.mode = Mode::kFloat;
                      opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, ans, [&](int i, int j) { return intersect(af[i], bf[j], opt); });
+                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersect(af[i], bf[j], opt); });
                    }});
-  algos.push_back({"gjk", true, [&pairs, &a, &b, max_iterations](std::uint8_t* ans) {
+  algos.push_back({"gjk", true, [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
                      Options opt;
                      opt.mode = Mode::kDouble;
                      opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, ans, [&](int i, int j) { return intersectGjk(a[i], b[j], opt); });
+                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersectGjk(a[i], b[j], opt); });
                    }});
-  algos.push_back({"hybrid", true, [&pairs, &a, &b, max_iterations](std::uint8_t* ans) {
+  algos.push_back({"hybrid", true, [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
                      Options opt;
                      opt.mode = Mode::kDouble;
                      opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, ans, [&](int i, int j) { return intersectHybrid(a[i], b[j], opt); });
+                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersectHybrid(a[i], b[j], opt); });
                    }});
   auto ccd = [&](bool mpr) {
-    return [&pairs, &a, &b, mpr](std::uint8_t* ans) {
+    return [&pairs, &a, &b, mpr](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
       ccd_t c;
       CCD_INIT(&c);
       c.support1 = ccdSupport<A>;
@@ -261,8 +261,8 @@ void addSupportAlgorithms(std::vector<Algorithm>& algos, const Pairs& pairs, con
       c.max_iterations = kCcdMaxIterations;
       c.mpr_tolerance = kCcdTolerance;
       if (mpr)
-        return boolPass(pairs, ans, [&](int i, int j) { return ccdMPRIntersect(&a[i], &b[j], &c) == 1; });
-      return boolPass(pairs, ans, [&](int i, int j) { return ccdGJKIntersect(&a[i], &b[j], &c) == 1; });
+        return boolPass(pairs, k0, k1, ans, [&](int i, int j) { return ccdMPRIntersect(&a[i], &b[j], &c) == 1; });
+      return boolPass(pairs, k0, k1, ans, [&](int i, int j) { return ccdGJKIntersect(&a[i], &b[j], &c) == 1; });
     };
   };
   algos.push_back({"ccd-gjk", false, ccd(false)});
@@ -276,9 +276,9 @@ struct FclObject {
 
 void addFclAlgorithm(std::vector<Algorithm>& algos, const std::string& name, const Pairs& pairs,
                      const std::vector<FclObject>& a, const std::vector<FclObject>& b) {
-  algos.push_back({name, false, [&pairs, &a, &b](std::uint8_t* ans) {
+  algos.push_back({name, false, [&pairs, &a, &b](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
                      fcl::CollisionRequestd request;  // default: GST_LIBCCD, one contact, no contact data
-                     return boolPass(pairs, ans, [&](int i, int j) {
+                     return boolPass(pairs, k0, k1, ans, [&](int i, int j) {
                        fcl::CollisionResultd result;
                        fcl::collide(a[i].geometry.get(), a[i].X_WG, b[j].geometry.get(), b[j].X_WG, request, result);
                        return result.isCollision();
@@ -458,17 +458,28 @@ std::vector<Row> runWorkload(const WorkloadSet& w, const Config& cfg, bool scan_
   std::vector<std::vector<std::uint8_t>> answers(algos.size(), std::vector<std::uint8_t>(m));
   std::vector<std::vector<double>> ns(algos.size());
   std::vector<PassStats> stats(algos.size());
-  // No separate warm-up: the order rotates between repetitions and the median discards the
-  // cold first pass.
+  // Each repetition walks the pairs in blocks; within a block every algorithm runs once, in
+  // an order that rotates. Load from other processes then hits all algorithms alike.
+  constexpr std::size_t kBlock = 1500;
+  const std::size_t na = algos.size();
   for (int rep = 0; rep < cfg.reps; ++rep) {
-    for (std::size_t q = 0; q < algos.size(); ++q) {
-      const std::size_t k = (q + std::size_t(rep)) % algos.size();
-      const auto start = Clock::now();
-      const PassStats s = algos[k].pass(answers[k].data());
-      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-      ns[k].push_back(seconds * 1e9 / double(m));
-      stats[k] = s;
+    std::vector<double> seconds(na, 0.0);
+    std::vector<PassStats> rep_stats(na);
+    std::size_t block_index = 0;
+    for (std::size_t k0 = 0; k0 < m; k0 += kBlock, ++block_index) {
+      const std::size_t k1 = std::min(m, k0 + kBlock);
+      for (std::size_t q = 0; q < na; ++q) {
+        const std::size_t k = (q + block_index + std::size_t(rep)) % na;
+        const auto start = Clock::now();
+        const PassStats s = algos[k].pass(k0, k1, answers[k].data());
+        seconds[k] += std::chrono::duration<double>(Clock::now() - start).count();
+        rep_stats[k].iterations += s.iterations;
+        rep_stats[k].max_iterations = std::max(rep_stats[k].max_iterations, s.max_iterations);
+        rep_stats[k].cap_hits += s.cap_hits;
+      }
     }
+    for (std::size_t k = 0; k < na; ++k) ns[k].push_back(seconds[k] * 1e9 / double(m));
+    stats = rep_stats;
   }
   if (!exact_reference_feasible) {
     // Reference = DSS exact (the sweep's large polytopes, where the exact SAT is too slow).

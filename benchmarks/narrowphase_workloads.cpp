@@ -126,16 +126,16 @@ const char* workloadName(WorkloadKind kind) {
 
 std::vector<double> defaultSigmas(WorkloadKind kind) {
   switch (kind) {
-    case WorkloadKind::kTetrahedra: return {0.0, 0.3, 0.8, 1.5, 3.0, 8.0, 40.0};
-    case WorkloadKind::kBoxes: return {0.0, 0.5, 1.0, 1.6, 2.5, 4.0, 10.0};
-    case WorkloadKind::kPolytopes: return {0.0, 0.5, 1.0, 2.0, 4.0, 10.0, 60.0};
+    case WorkloadKind::kTetrahedra: return {0.0, 0.8, 1.5, 2.5, 5.0, 15.0, 200.0};
+    case WorkloadKind::kBoxes: return {0.2, 0.5, 1.0, 1.6, 2.5, 4.0, 10.0};
+    case WorkloadKind::kPolytopes: return {0.0, 2.0, 3.0, 4.0, 8.0, 20.0, 150.0};
     case WorkloadKind::kFrustumSpheres:
-    case WorkloadKind::kFrustumBoxes: return {1.0, 1.3, 1.7, 2.2, 3.0, 4.5, 8.0};
+    case WorkloadKind::kFrustumBoxes: return {1.0, 1.3, 1.7, 2.2, 3.0, 4.5, 6.5};
   }
   return {};
 }
 
-double sweepSigma() { return 2.0; }
+double sweepSigma() { return 5.0; }
 
 void paperFrustum(std::vector<Vec3d>& vertices, Vec3d& inscribed_center, double& inscribed_radius) {
   const double near = 0.1, far = 100.0;
