@@ -4,6 +4,35 @@
 #include <cmath>
 
 namespace dss {
+namespace {
+
+// sin and cos together, inlined, within about 2 ulp of libm for |x| < 1e5 (joint angles):
+// Cody-Waite reduction by pi/2 with a 33-bit leading part (k * kPio2Hi is exact for |k| <
+// 2^20), then Taylor polynomials on [-pi/4, pi/4] (truncation below 5e-17). Calling libm's
+// sincos costs about as much as the rest of a kinematics step.
+inline void fastSinCos(double x, double* s_out, double* c_out) {
+  static const double kPio2Hi = std::ldexp(std::floor(std::ldexp(M_PI_2, 32)), -32);
+  static const double kPio2Mid = M_PI_2 - kPio2Hi;  // exact: both near pi/2
+  constexpr double kPio2Lo = 6.123233995736766e-17;  // pi/2 - M_PI_2
+  const double k = std::nearbyint(x * (2.0 / M_PI));
+  const double r = ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
+  const double r2 = r * r;
+  // 1/n! for the Taylor series
+  const double s = r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+                   r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0)))))));
+  const double c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
+                   r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+  switch (static_cast<long long>(k) & 3) {
+    case 0: *s_out = s; *c_out = c; break;
+    case 1: *s_out = c; *c_out = -s; break;
+    case 2: *s_out = -s; *c_out = -c; break;
+    default: *s_out = -c; *c_out = s; break;
+  }
+}
+
+}  // namespace
+
+void sinCosForKinematics(double x, double* s, double* c) { fastSinCos(x, s, c); }
 
 Kinematics::Kinematics(const RobotModel& model, bool all_links)
     : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
@@ -91,7 +120,8 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
           // Rotation about local axis k mixes the two other columns.
           const int k = static_cast<int>(s.motion) - static_cast<int>(Motion::kRotX);
           const int a = (k + 1) % 3, b = (k + 2) % 3;
-          const double c = std::cos(v), sn = std::sin(v);
+          double sn, c;
+          fastSinCos(v, &sn, &c);
           const Eigen::Vector3d ca = R.col(a), cb = R.col(b);
           R.col(a) = c * ca + sn * cb;
           R.col(b) = c * cb - sn * ca;
