@@ -6,8 +6,9 @@
 // limit), and a line is added to Scene::warnings naming the joint and the value used;
 // with `urdf_require_fixed_joints` such a joint is an error instead. Floating and planar
 // joints are refused. Primitives stay exact (box, sphere, cylinder); meshes (with their
-// `scale`) become convex hulls; mesh paths as in the robot loader (package dirs,
-// ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, the URDF's folder; file:// and relative paths).
+// `scale`) become convex hulls. Mesh URIs: package:// through SceneLoadOptions::package_dirs,
+// then <dir>/pkg for each ROS_PACKAGE_PATH entry (or the entry itself when it is named pkg),
+// then AMENT_PREFIX_PATH/share/pkg, then the URDF's folder; file:// and relative paths.
 // The URDF's root link is the world frame. Each collision element is one obstacle named
 // "link" (one element) or "link/k"; its object_id is the link name. A `<collision>` element
 // that urdfdom did not turn into geometry (e.g. after an unknown tag) is an error.
