@@ -98,6 +98,26 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
   return r;
 }
 
+std::vector<std::string> checkRequestJoints(const PlanRequest& request,
+                                            const std::set<std::string>& movable,
+                                            const std::set<std::string>& held) {
+  std::vector<std::string> ignored;
+  for (const auto& n : request.start_names) {
+    if (movable.count(n)) continue;
+    if (!held.count(n))
+      throw SceneError(request.source + ": start state names joint '" + n +
+                       "', which the robot lacks");
+    ignored.push_back(n);
+  }
+  for (std::size_t g = 0; g < request.goals.size(); ++g)
+    for (const auto& c : request.goals[g].joint_constraints)
+      if (!movable.count(c.joint_name))
+        throw SceneError(request.source + ": goal_constraints[" + std::to_string(g) +
+                         "] names joint '" + c.joint_name + "', which is not a movable joint of "
+                         "the robot");
+  return ignored;
+}
+
 PlanRequest loadPlanRequestYaml(const std::string& path) {
   return parsePlanRequestYaml(scene_detail::readTextFile(path), path);
 }

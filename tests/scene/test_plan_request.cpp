@@ -53,6 +53,21 @@ BOOST_AUTO_TEST_CASE(key_order_and_values) {
   BOOST_TEST(r.num_planning_attempts == 2);
 }
 
+BOOST_AUTO_TEST_CASE(joints_checked_against_a_robot) {
+  const std::string text = "group_name: g\nstart_state:\n  joint_state:\n    name: [a, b, grip]\n"
+                           "    position: [0, 1, 0]\ngoal_constraints:\n  - joint_constraints:\n"
+                           "      - {joint_name: a, position: 1}\n";
+  const dss::PlanRequest r = dss::parsePlanRequestYaml(text, "req.yaml");
+  const auto ignored = dss::checkRequestJoints(r, {"a", "b"}, {"grip"});
+  BOOST_TEST(ignored == std::vector<std::string>{"grip"});
+  std::string m = thrownMessage<dss::SceneError>([&] { dss::checkRequestJoints(r, {"a", "b"}, {}); });
+  BOOST_TEST(contains(m, "req.yaml"));
+  BOOST_TEST(contains(m, "'grip'"));
+  m = thrownMessage<dss::SceneError>([&] { dss::checkRequestJoints(r, {"b"}, {"a", "grip"}); });
+  BOOST_TEST(contains(m, "goal_constraints[0]"));
+  BOOST_TEST(contains(m, "'a'"));
+}
+
 BOOST_AUTO_TEST_CASE(errors) {
   auto msgOf = [](const std::string& text) {
     return thrownMessage<dss::SceneError>([&] { dss::parsePlanRequestYaml(text, "req.yaml"); });

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct PlanRequest {
   /// Start state by joint name.
   std::map<std::string, double> startState() const;
 };
+
+/// Checks a request's joints against a robot: every goal joint must be in `movable`; a start
+/// joint must be in `movable` or in `held` (joints the robot has but does not move, e.g. the
+/// UR5 gripper joints that are fixed in its URDF: ignored). Throws SceneError naming the file
+/// and the joint otherwise; returns the start joints that were ignored.
+std::vector<std::string> checkRequestJoints(const PlanRequest& request,
+                                            const std::set<std::string>& movable,
+                                            const std::set<std::string>& held);
 
 /// Throws SceneError ("file:line: ...") on malformed YAML, a missing group_name, mismatched
 /// name/position lengths, non-finite values or non-joint goal constraints.
