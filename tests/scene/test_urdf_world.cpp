@@ -115,7 +115,24 @@ BOOST_AUTO_TEST_CASE(primitives_and_errors) {
   m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(negative); });
   BOOST_TEST(contains(m, "missing.stl"));
   BOOST_TEST(contains(m, "link 'a'"));
-  for (const auto& f : {ok, broken, capsule, negative}) std::remove(f.c_str());
+  // An empty mesh file: the error names the link and the file.
+  const std::string empty_stl = writeTemp("dss_scene_world_empty.stl", "");
+  const std::string empty = writeTemp("dss_scene_world_empty.urdf", R"(<robot name="w">
+  <link name="slab"><collision><geometry><mesh filename="dss_scene_world_empty.stl"/></geometry></collision></link>
+</robot>)");
+  m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(empty); });
+  BOOST_TEST(contains(m, "link 'slab'"));
+  BOOST_TEST(contains(m, "dss_scene_world_empty.stl"));
+  // A negative box size.
+  const std::string neg_box = writeTemp("dss_scene_world_negbox.urdf", R"(<robot name="w">
+  <link name="b"><collision><geometry><box size="1 -1 1"/></geometry></collision></link>
+</robot>)");
+  m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(neg_box); });
+  BOOST_TEST(contains(m, "dss_scene_world_negbox.urdf"));
+  BOOST_TEST(contains(m, "link 'b'"));
+  BOOST_TEST(contains(m, "negative box size"));
+  for (const auto& f : {ok, broken, capsule, negative, empty_stl, empty, neg_box})
+    std::remove(f.c_str());
 }
 
 BOOST_AUTO_TEST_SUITE_END()
