@@ -138,11 +138,11 @@ int det3Sign(const double hi[3][3], const double lo[3][3]) {
   return sign(total);
 }
 
-int minor2Sign(double x1h, double x1l, double y1h, double y1l, double x2h, double x2l,
-               double y2h, double y2l) {
+int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl,
+               double byh, double byl) {
   Expansion p, q, r;
-  mul(two(x1h, x1l), two(y2h, y2l), p);
-  mul(two(x2h, x2l), two(y1h, y1l), q);
+  mul(two(axh, axl), two(byh, byl), p);
+  mul(two(ayh, ayl), two(bxh, bxl), q);
   negate(q);
   sum(p, q, r);
   return sign(r);

@@ -24,9 +24,10 @@ inline void twoDiff(double a, double b, double& hi, double& lo) {
 /// Sign (-1, 0, +1) of det[r0; r1; r2] where row i is (hi[i] + lo[i]) componentwise.
 int det3Sign(const double hi[3][3], const double lo[3][3]);
 
-/// Sign of x1*y2 - x2*y1 where each argument is the two-term value h + l.
-int minor2Sign(double x1h, double x1l, double y1h, double y1l, double x2h, double x2l,
-               double y2h, double y2l);
+/// Sign of ax*by - ay*bx (the 2-D cross product of a and b) where each argument is the
+/// two-term value h + l.
+int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl,
+               double byh, double byl);
 
 /// Sign of (ph + pl) . (qh + ql).
 int dotSign(const double ph[3], const double pl[3], const double qh[3], const double ql[3]);

@@ -88,8 +88,8 @@ class SphericalPolygon {
     } else {
       const W m = a.hi[i] * b.hi[j] - a.hi[j] * b.hi[i];
       if (std::abs(m) > kFilter * a.norm * b.norm) return (m > W(0)) - (m < W(0));
-      return exact::minor2Sign(a.hi[i], a.lo[i], b.hi[j], b.lo[j], a.hi[j], a.lo[j], b.hi[i],
-                               b.lo[i]);
+      return exact::cross2Sign(a.hi[i], a.lo[i], a.hi[j], a.lo[j], b.hi[i], b.lo[i], b.hi[j],
+                               b.lo[j]);
     }
   }
 

@@ -1,0 +1,176 @@
+// Support functions of the primitives against independent long-double formulas, the URDF
+// conventions (cone apex at +z, cylinder and capsule along z), and curved shapes at gaps and
+// depths from 1e-3 down to 1e-12 of their size against a box face, for every shape type.
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+
+#include "dss/core/any_shape_query.h"
+#include "dss/core/spherical_polygon.h"
+
+using namespace dss;
+
+namespace {
+
+using LD = long double;
+
+// h(d) for |d| = 1 in the shape's frame: the analytic support value.
+LD supportValue(const AnyShape& s, const Vec3d& d) {
+  const LD dx = d.x(), dy = d.y(), dz = d.z();
+  const LD rxy = std::sqrt(dx * dx + dy * dy);
+  if (auto* x = std::get_if<Sphere>(&s)) return x->radius;
+  if (auto* x = std::get_if<Box>(&s)) return std::abs(dx) * x->half.x() + std::abs(dy) * x->half.y() + std::abs(dz) * x->half.z();
+  if (auto* x = std::get_if<Capsule>(&s)) return x->radius + std::abs(dz) * x->half_length;
+  if (auto* x = std::get_if<Cylinder>(&s)) return x->radius * rxy + std::abs(dz) * x->half_length;
+  if (auto* x = std::get_if<Cone>(&s)) return std::max<LD>(dz * x->half_length, x->radius * rxy - dz * x->half_length);
+  if (auto* x = std::get_if<Ellipsoid>(&s)) {
+    const LD a = x->radii.x() * dx, b = x->radii.y() * dy, c = x->radii.z() * dz;
+    return std::sqrt(a * a + b * b + c * c);
+  }
+  return 0;
+}
+
+std::vector<AnyShape> primitives() {
+  return {Sphere{0.7}, Box::fromSize({0.4, 1.0, 0.6}), Capsule::fromLength(0.3, 0.8),
+          Cylinder::fromLength(0.4, 1.2), Cone::fromLength(0.5, 1.0),
+          Ellipsoid{Vec3d(0.3, 0.6, 0.9)}};
+}
+
+Mat3d randomRotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(shapes)
+
+BOOST_AUTO_TEST_CASE(support_matches_analytic_values) {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> g;
+  for (const auto& s : primitives()) {
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3d d = Vec3d(g(rng), g(rng), g(rng)).normalized();
+      const Vec3d x = std::visit([&](const auto& sh) { return Vec3d(sh.support(d, Vec3d::Zero())); }, s);
+      BOOST_TEST(std::abs(LD(d.dot(x)) - supportValue(s, d)) < 1e-14L, shapeTypeName(s));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(urdf_conventions) {
+  const Cone cone = Cone::fromLength(0.5, 2.0);
+  BOOST_TEST(cone.support(Vec3d(0, 0, 1), Vec3d::Zero()).z() == 1.0);   // apex at +length/2
+  BOOST_TEST(cone.support(Vec3d(0, 0, -1), Vec3d::Zero()).z() == -1.0);  // base at -length/2
+  BOOST_TEST(cone.support(Vec3d(1, 0, -1), Vec3d::Zero()).x() == 0.5);
+  const Cylinder cyl = Cylinder::fromLength(0.5, 2.0);
+  BOOST_TEST(cyl.support(Vec3d(0, 0, 1), Vec3d::Zero()).z() == 1.0);
+  const Capsule cap = Capsule::fromLength(0.5, 2.0);
+  BOOST_TEST(cap.support(Vec3d(0, 0, 1), Vec3d::Zero()).z() == 1.5);  // length/2 + radius
+  const Box box = Box::fromSize({1, 2, 3});
+  BOOST_TEST((box.support(Vec3d(1, -1, 1), Vec3d::Zero()) == Vec3d(0.5, -1, 1.5)));
+}
+
+// A slab whose top face is z = 0; each primitive, randomly rotated, is lowered to a gap or
+// depth of eps * size from it. The reference is the analytic support value in long double.
+BOOST_AUTO_TEST_CASE(near_contact_every_shape_type) {
+  std::mt19937_64 rng(2);
+  const auto slab = posed(Box::fromSize({4, 4, 1}), Mat3d::Identity().eval(), Vec3d(0, 0, -0.5));
+  const AnyShape slab_any = Box::fromSize({4, 4, 1});
+  Eigen::Isometry3d X_slab = Eigen::Isometry3d::Identity();
+  X_slab.translation() = Vec3d(0, 0, -0.5);
+  int wrong_exact = 0, n = 0, wrong_double = 0, wrong_float = 0;
+  for (const auto& s : primitives()) {
+    for (double eps : {1e-3, 1e-6, 1e-9, 1e-12}) {
+      for (int side : {+1, -1}) {
+        for (int i = 0; i < 25; ++i) {
+          const Mat3d R = randomRotation(rng);
+          // lowest point of R*S: -h_S(R^T (0,0,-1))
+          const LD low = supportValue(s, R.transpose() * Vec3d(0, 0, -1));
+          const double size = 1.0;
+          const double z = double(low + LD(side * eps * size));
+          Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+          X.linear() = R;
+          X.translation() = Vec3d(0.1 * i / 25.0, -0.05, z);
+          const bool truth = side < 0;
+          Options o;
+          for (bool swap : {false, true}) {
+            const Result r = swap ? intersect(slab_any, X_slab, s, X, o) : intersect(s, X, slab_any, X_slab, o);
+            wrong_exact += r.intersect != truth;
+            ++n;
+          }
+          o.mode = Mode::kDouble;
+          wrong_double += intersect(s, X, slab_any, X_slab, o).intersect != truth;
+          o.mode = Mode::kFloat;
+          wrong_float += intersect(s, X, slab_any, X_slab, o).intersect != truth;
+        }
+      }
+    }
+  }
+  (void)slab;
+  BOOST_TEST_MESSAGE("curved near contact: " << n << " exact queries, wrong " << wrong_exact
+                                             << "; double wrong " << wrong_double
+                                             << "; float wrong " << wrong_float);
+  BOOST_TEST(wrong_exact == 0);
+}
+
+BOOST_AUTO_TEST_CASE(sphere_pairs_against_distance) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0, n = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3d ca(u(rng), u(rng), u(rng)), cb(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+    const double ra = 0.2 + 0.5 * std::abs(u(rng)), rb = 0.2 + 0.5 * std::abs(u(rng));
+    const LD gap = std::sqrt(LD((ca - cb).squaredNorm())) - ra - rb;
+    if (std::abs(gap) < 1e-12L) continue;
+    const auto a = posed(Sphere{ra}, Mat3d::Identity().eval(), ca);
+    const auto b = posed(Sphere{rb}, Mat3d::Identity().eval(), cb);
+    BOOST_TEST(intersect(a, b).intersect == (gap <= 0));
+    hits += gap <= 0;
+    ++n;
+  }
+  BOOST_TEST(hits > n * 0.3);
+  BOOST_TEST(hits < n * 0.7);
+}
+
+// After any sequence of clips, every cached vertex lies on the boundary of the region and
+// inside every other hemisphere, and the centre lies strictly inside.
+BOOST_AUTO_TEST_CASE(spherical_polygon_invariants) {
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> g;
+  int polygons = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    detail::SphericalPolygon<double, true> poly;
+    auto makePole = [&](const Vec3d& v) {
+      detail::Pole<double> p;
+      p.hi = v;
+      p.lo.setZero();
+      p.norm = v.norm();
+      return p;
+    };
+    const Vec3d target = Vec3d(g(rng), g(rng), g(rng)).normalized();  // stays separating
+    auto randomPole = [&]() {
+      for (;;) {
+        const Vec3d v(g(rng), g(rng), g(rng));
+        if (v.dot(target) < -0.05 * v.norm()) return v;
+      }
+    };
+    poly.init(makePole(randomPole()));
+    for (int k = 0; k < 12; ++k) {
+      const auto res = poly.clip(makePole(randomPole()));
+      BOOST_TEST((res != detail::ClipResult::kEmpty));  // target is inside every hemisphere
+      const Vec3d c = poly.center();
+      for (int j = 0; j < poly.size(); ++j) BOOST_TEST(c.dot(poly.pole(j).hi) < 0);
+      if (poly.size() >= 3) {
+        ++polygons;
+        for (int i = 0; i < poly.size(); ++i) {
+          const Vec3d v = poly.pole(i).hi.cross(poly.pole((i + 1) % poly.size()).hi);
+          for (int j = 0; j < poly.size(); ++j)
+            BOOST_TEST(v.dot(poly.pole(j).hi) <= 1e-12 * v.norm() * poly.pole(j).norm);
+        }
+      }
+    }
+  }
+  BOOST_TEST(polygons > 1000);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
