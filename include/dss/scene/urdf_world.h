@@ -12,6 +12,9 @@
 // The URDF's root link is the world frame. Each collision element is one obstacle named
 // "link" (one element) or "link/k"; its object_id is the link name. A `<collision>` element
 // that urdfdom did not turn into geometry (e.g. after an unknown tag) is an error.
+// urdfdom's own messages are captured (console_bridge's global output handler is swapped for
+// the duration of the parse) and put in the exception or in Scene::warnings; do not load
+// URDFs from several threads at once.
 #pragma once
 
 #include <string>
