@@ -693,14 +693,14 @@ int runNarrowphase(int argc, char** argv) {
     }
   }
   if (cfg.sweep) {
-    // Fewer objects: the polytopes get large. The exact reference runs up to 32 vertices;
+    // Fewer objects: the polytopes get large. The exact reference runs up to 128 vertices;
     // above, answers are scored against DSS exact (named in the reference column).
     const int n = std::max(10, cfg.n / 3);
     for (int v : cfg.sweep_vertices) {
       const WorkloadSet w = makeWorkload(WorkloadKind::kPolytopes, sweepSigma(), n, cfg.seed, v);
       WorkloadSet ws = w;
       ws.name = "sweep";
-      const auto r = runWorkload(ws, cfg, true, v <= 32);
+      const auto r = runWorkload(ws, cfg, true, v <= 128);
       rows.insert(rows.end(), r.begin(), r.end());
     }
   }

@@ -96,18 +96,22 @@ Polytope randomPolytope(Rng& rng, int vertices, double shift) {
 
 void Polytope::finishTopology() {
   std::map<std::pair<int, int>, std::vector<int>> opposite;
+  std::map<std::pair<int, int>, std::vector<Vec3d>> normals;
   for (const auto& t : triangles) {
+    const Vec3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).normalized();
     for (int k = 0; k < 3; ++k) {
       int a = t[k], b = t[(k + 1) % 3];
       if (a > b) std::swap(a, b);
       opposite[{a, b}].push_back(t[(k + 2) % 3]);
+      normals[{a, b}].push_back(n);
     }
   }
   edges.clear();
   neighbours.assign(vertices.size(), {});
   for (const auto& [key, opp] : opposite) {
     if (opp.size() != 2) throw std::runtime_error("Polytope: hull edge not shared by two triangles");
-    edges.push_back(Edge{key.first, key.second, {opp[0], opp[1]}});
+    const auto& nrm = normals[key];
+    edges.push_back(Edge{key.first, key.second, {opp[0], opp[1]}, {nrm[0], nrm[1]}});
     neighbours[key.first].push_back(key.second);
     neighbours[key.second].push_back(key.first);
   }

@@ -22,6 +22,7 @@ struct Polytope {
   struct Edge {
     int a, b;            // endpoints
     int opposite[2];     // third vertices of the two adjacent triangles
+    Vec3d normal[2];     // unit outward normals of those triangles (rounded; a filter only)
   };
   std::vector<Vec3d> vertices;
   std::vector<std::array<int, 3>> triangles;
