@@ -118,8 +118,10 @@ BOOST_AUTO_TEST_CASE(sphere_pairs_against_distance) {
   std::uniform_real_distribution<double> u(-1, 1);
   int hits = 0, n = 0;
   for (int i = 0; i < 5000; ++i) {
-    const Vec3d ca(u(rng), u(rng), u(rng)), cb(0.8 * u(rng), 0.8 * u(rng), 0.8 * u(rng));
+    const Vec3d ca(u(rng), u(rng), u(rng));
     const double ra = 0.2 + 0.5 * std::abs(u(rng)), rb = 0.2 + 0.5 * std::abs(u(rng));
+    // Centre distances spread around contact: about half the pairs intersect.
+    const Vec3d cb = ca + Vec3d(u(rng), u(rng), u(rng)).normalized() * (ra + rb) * (1.0 + 0.5 * u(rng));
     const LD gap = std::sqrt(LD((ca - cb).squaredNorm())) - ra - rb;
     if (std::abs(gap) < 1e-12L) continue;
     const auto a = posed(Sphere{ra}, Mat3d::Identity().eval(), ca);
