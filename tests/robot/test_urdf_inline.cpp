@@ -122,8 +122,9 @@ BOOST_AUTO_TEST_CASE(structure_and_fk_against_hand_computed_poses) {
     BOOST_TEST((X[m.linkIndex("l2")].matrix() - l2.matrix()).norm() < 1e-14);
     BOOST_TEST((X[m.linkIndex("l3")].matrix() - l3.matrix()).norm() < 1e-14);
     BOOST_TEST((X[m.linkIndex("l4")].matrix() - l4.matrix()).norm() < 1e-14);
-    if (all) BOOST_TEST((X[m.linkIndex("l1")].matrix() - l1.matrix()).norm() < 1e-14);
-    else BOOST_TEST(kin.updatedLinks().size() == 4u);  // l1 (fixed child, no geometry) folded
+    // l1 has no geometry but its joint moves and leads to geometry: computed in both modes.
+    BOOST_TEST((X[m.linkIndex("l1")].matrix() - l1.matrix()).norm() < 1e-14);
+    BOOST_TEST(kin.updatedLinks().size() == 5u);
     BOOST_TEST(kin.jointValue(q, m.jointIndex("m")) == 2 * 0.7 + 0.5);
   }
 }
@@ -189,7 +190,8 @@ BOOST_AUTO_TEST_CASE(mesh_paths) {
   const auto m = dss::loadUrdf(path, o);
   BOOST_TEST(m.numCollisionElements() == 6u);
   const auto& scaled = std::get<dss::ConvexHull>(m.links[0].collisions[1].shape);
-  BOOST_TEST(scaled.support(Vector3d::UnitX(), Vector3d::Zero()).x() == 0.2);
+  // STL stores floats: 0.1f scaled by 2.
+  BOOST_TEST(std::abs(scaled.support(Vector3d::UnitX(), Vector3d::Zero()).x() - 0.2) < 1e-7);
   // Without the explicit root, the error names the link and the URI.
   const std::string msg = [&] {
     try {
@@ -368,6 +370,33 @@ BOOST_AUTO_TEST_CASE(srdf_bad_input) {
   BOOST_CHECK_THROW(dss::groupActiveJoints(m, s, "g"), std::runtime_error);
   BOOST_TEST(dss::groupActiveJoints(m, s, "c") == (std::vector<int>{0, 1}));
   BOOST_TEST(dss::checkSrdfAgainstModel(m, s).size() == 1u);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(kinematics_folding)
+
+BOOST_AUTO_TEST_CASE(fixed_links_without_geometry_are_folded) {
+  // a -j(rev)-> b -f1(fixed)-> c(no geometry) -f2(fixed)-> d(geometry); e hangs off c without geometry.
+  const std::string urdf = R"(<robot name="f">
+  <link name="a"/><link name="b"/><link name="c"/><link name="e"/>
+  <link name="d"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 1" rpy="0.3 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="f1" type="fixed"><parent link="b"/><child link="c"/><origin xyz="0.5 0 0" rpy="0 0.4 0"/></joint>
+  <joint name="f2" type="fixed"><parent link="c"/><child link="d"/><origin xyz="0 0.5 0" rpy="0 0 0.6"/></joint>
+  <joint name="ce" type="revolute"><parent link="c"/><child link="e"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)";
+  const auto m = dss::loadUrdf(write("fold.urdf", urdf));
+  const dss::Kinematics fast(m), all(m, true);
+  BOOST_TEST(fast.updatedLinks().size() == 3u);  // a, b, d (c folded, e leads to no geometry)
+  const auto A = fast.linkPoses({0.8, 0.1}), B = all.linkPoses({0.8, 0.1});
+  const int d = m.linkIndex("d");
+  BOOST_TEST((A[d].matrix() - B[d].matrix()).norm() < 1e-14);
+  const Isometry3d b = pose(Vector3d(0, 0, 1), rot(0.3, Vector3d::UnitX()) * rot(0.8, Vector3d::UnitY()));
+  const Isometry3d expect = b * pose(Vector3d(0.5, 0, 0), rot(0.4, Vector3d::UnitY())) *
+                            pose(Vector3d(0, 0.5, 0), rot(0.6, Vector3d::UnitZ()));
+  BOOST_TEST((A[d].matrix() - expect.matrix()).norm() < 1e-14);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
