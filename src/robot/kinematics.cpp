@@ -11,9 +11,10 @@ namespace {
 // 2^20), then Taylor polynomials on [-pi/4, pi/4] (truncation below 5e-17). Calling libm's
 // sincos costs about as much as the rest of a kinematics step.
 inline void fastSinCos(double x, double* s_out, double* c_out) {
-  static const double kPio2Hi = std::ldexp(std::floor(std::ldexp(M_PI_2, 32)), -32);
-  static const double kPio2Mid = M_PI_2 - kPio2Hi;  // exact: both near pi/2
+  constexpr double kPio2Hi = 0x1.921fb544p+0;  // M_PI_2 truncated to 33 significant bits
+  constexpr double kPio2Mid = 0x1.0b46p-34;     // M_PI_2 - kPio2Hi, exact
   constexpr double kPio2Lo = 6.123233995736766e-17;  // pi/2 - M_PI_2
+  static_assert(kPio2Hi + kPio2Mid == M_PI_2, "split of pi/2");
   const double k = std::nearbyint(x * (2.0 / M_PI));
   const double r = ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
   const double r2 = r * r;
