@@ -191,3 +191,23 @@ BOOST_AUTO_TEST_CASE(panda_fk_geometry_only_matches_all_links) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+#include "dss/robot/joint_state.h"
+
+BOOST_AUTO_TEST_SUITE(shared_robot_states)
+
+BOOST_AUTO_TEST_CASE(mbm_quirks_warn_not_refuse) {
+  if (!haveShared()) return;
+  const auto panda = dss::loadUrdf((kRobots / "panda/panda.urdf").string());
+  std::vector<std::string> notes;
+  const auto q = dss::assembleState(panda, {{"panda_joint1", 0.1}, {"panda_finger_joint1", 0.065},
+                                            {"panda_finger_joint2", 0.065}}, "mbm start", &notes);
+  BOOST_TEST(notes.size() == 1u);  // the finger above 0.04; finger 2 agrees with its leader
+  BOOST_TEST(q[panda.joints[panda.jointIndex("panda_finger_joint1")].active_index] == 0.065);
+  const auto ur5 = dss::loadUrdf((kRobots / "ur5_robotiq85/ur5.urdf").string());
+  notes.clear();
+  dss::assembleState(ur5, {{"shoulder_pan_joint", 0.0}, {"robotiq_85_left_knuckle_joint", 0.0}}, "ur5 start", &notes);
+  BOOST_TEST(notes.size() == 1u);  // a fixed Robotiq joint is ignored, with a note
+}
+
+BOOST_AUTO_TEST_SUITE_END()

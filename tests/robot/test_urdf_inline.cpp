@@ -400,3 +400,28 @@ BOOST_AUTO_TEST_CASE(fixed_links_without_geometry_are_folded) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+#include "dss/robot/joint_state.h"
+
+BOOST_AUTO_TEST_SUITE(joint_state)
+
+BOOST_AUTO_TEST_CASE(assemble_state_from_named_values) {
+  const auto m = dss::loadUrdf(write("arm3.urdf", kArm));
+  std::vector<std::string> notes;
+  // j2 above its limit (kept, noted), m is a mimic (ignored, disagreement noted), f is fixed.
+  const auto q = dss::assembleState(m, {{"j1", 0.5}, {"j2", 0.65}, {"m", 0.0}, {"f", 1.0}}, "req.yaml", &notes);
+  BOOST_TEST(q == (std::vector<double>{0.5, 0.65}));
+  BOOST_TEST(notes.size() == 3u);
+  for (const auto& n : notes) BOOST_TEST(contains(n, "req.yaml: "));
+  // Unnamed joints keep the base state.
+  BOOST_TEST(dss::assembleState(m, {{"j2", 0.1}}, "s", nullptr, {2.0, 0.0}) == (std::vector<double>{2.0, 0.1}));
+  try {
+    dss::assembleState(m, {{"elbow", 0.1}}, "req.yaml");
+    BOOST_FAIL("expected an exception");
+  } catch (const std::runtime_error& e) {
+    BOOST_TEST(contains(e.what(), "req.yaml: joint 'elbow'"));
+  }
+  BOOST_CHECK_THROW(dss::assembleState(m, {{"j1", NAN}}, "s"), std::runtime_error);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
