@@ -201,6 +201,7 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
   RobotModel model;
   model.name = urdf->getName();
   model.source = file;
+  for (const auto& l : capture.lines) model.warnings.push_back(file + ": urdfdom: " + l);
   std::map<std::string, int> joint_doc_index;
   for (std::size_t i = 0; i < scan.joint_order.size(); ++i) joint_doc_index[scan.joint_order[i]] = int(i);
 

@@ -171,6 +171,7 @@ BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
   const auto vamp = dss::loadUrdf((kRobots / "panda_vamp/panda.urdf").string());
   BOOST_TEST(dss::groupActiveJoints(vamp, dss::loadSrdf((kRobots / "panda_vamp/panda.srdf").string()), "hand").empty());
   BOOST_TEST(!vamp.warnings.empty());  // mimic tag on a fixed joint is reported
+
 }
 
 BOOST_AUTO_TEST_CASE(panda_fk_geometry_only_matches_all_links) {
