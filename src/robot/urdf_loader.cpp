@@ -2,6 +2,7 @@
 // elements (so none is dropped silently) and for strict validation of every <origin>.
 #include "dss/robot/urdf_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -201,7 +202,10 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
   RobotModel model;
   model.name = urdf->getName();
   model.source = file;
-  for (const auto& l : capture.lines) model.warnings.push_back(file + ": urdfdom: " + l);
+  for (const auto& l : capture.lines) {  // urdfdom repeats some messages
+    const std::string w = file + ": urdfdom: " + l;
+    if (std::find(model.warnings.begin(), model.warnings.end(), w) == model.warnings.end()) model.warnings.push_back(w);
+  }
   std::map<std::string, int> joint_doc_index;
   for (std::size_t i = 0; i < scan.joint_order.size(); ++i) joint_doc_index[scan.joint_order[i]] = int(i);
 

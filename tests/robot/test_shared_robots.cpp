@@ -171,6 +171,10 @@ BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
   const auto vamp = dss::loadUrdf((kRobots / "panda_vamp/panda.urdf").string());
   BOOST_TEST(dss::groupActiveJoints(vamp, dss::loadSrdf((kRobots / "panda_vamp/panda.srdf").string()), "hand").empty());
   BOOST_TEST(!vamp.warnings.empty());  // mimic tag on a fixed joint is reported
+  // urdfdom's own warnings are kept (MANIFEST: material 'black' used before its definition).
+  const auto ur5 = dss::loadUrdf((kRobots / "ur5_robotiq85/ur5.urdf").string());
+  BOOST_TEST(ur5.warnings.size() == 1u);
+  BOOST_TEST(ur5.warnings.at(0).find("material 'black' undefined") != std::string::npos);
 
 }
 
