@@ -4,12 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -355,6 +358,66 @@ BOOST_AUTO_TEST_CASE(padding_is_a_distance_query) {
                               algo << " " << mode << " padding " << padding << ": " << line);
       }
     }
+  }
+}
+
+// Convex shapes with more than 32 points take FCL's edge-walking support (faces from qhull);
+// flat sets take the no-face fallback. Probes far from contact must agree across algorithms.
+BOOST_AUTO_TEST_CASE(large_and_flat_convex_sets_agree_with_probes) {
+  std::mt19937 rng(20240611);
+  std::normal_distribution<double> normal;
+  auto num = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return std::string(buf);
+  };
+  // 80 points on the unit sphere (their hull contains the ball of radius 0.6 with this seed's
+  // spread, far more than the probes need) and 40 points on the unit circle in z = 0.
+  std::string ball = "[", disc = "[";
+  for (int i = 0; i < 80; ++i) {
+    const double x = normal(rng), y = normal(rng), z = normal(rng);
+    const double n = std::sqrt(x * x + y * y + z * z);
+    ball += (i ? "," : "") + std::string("[") + num(x / n) + "," + num(y / n) + "," +
+            num(z / n) + "]";
+  }
+  for (int i = 0; i < 40; ++i) {
+    const double t = 2 * M_PI * i / 40;
+    disc += (i ? "," : "") + std::string("[") + num(std::cos(t)) + "," + num(std::sin(t)) + ",0]";
+  }
+  ball += "]";
+  disc += "]";
+  const std::string pose =
+      R"(,"pose":{"position":[0.25,-0.5,1],"orientation":[0.1,0.2,0.3,0.9]})";
+  const Eigen::Quaterniond q = Eigen::Quaterniond(0.9, 0.1, 0.2, 0.3).normalized();
+  std::string text;
+  std::vector<bool> expect;
+  int id = 0;
+  for (int h = 0; h < 2; ++h) {
+    for (int k = 0; k < 24; ++k) {
+      // A probe sphere of radius 0.1 in a random direction of the hull's frame: centre at
+      // distance 0.3 (deep inside) or 1.3 (outside, gap at least 0.2).
+      const double x = normal(rng), y = normal(rng), z = h == 0 ? normal(rng) : 0.0;
+      const double n = std::sqrt(x * x + y * y + z * z);
+      const bool inside = k % 2 == 0;
+      const double r = inside ? 0.3 : 1.3;
+      const Eigen::Vector3d c =
+          q * Eigen::Vector3d(x / n * r, y / n * r, z / n * r) + Eigen::Vector3d(0.25, -0.5, 1);
+      text += R"({"id":)" + std::to_string(id++) + R"(,"a":{"type":"convex","vertices":)" +
+              (h == 0 ? ball : disc) + pose +
+              R"(},"b":{"type":"sphere","radius":0.1,"pose":{"position":[)" + num(c.x()) + "," +
+              num(c.y()) + "," + num(c.z()) + R"(],"orientation":[0,0,0,1]}}})" + "\n";
+      expect.push_back(inside);
+    }
+  }
+  const fs::path file = writeFile("large_convex.jsonl", text);
+  for (const std::string algo : {"dss", "gjk", "hybrid", "fcl"}) {
+    const Run r = runTool("--algo " + algo + " " + quote(file.string()));
+    BOOST_REQUIRE_EQUAL(r.exit_code, 0);
+    const auto lines = r.outLines();
+    BOOST_REQUIRE_EQUAL(lines.size(), expect.size());
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      BOOST_CHECK_MESSAGE(Json::parse(lines[i]).at("intersect") == bool(expect[i]),
+                          algo << ": " << lines[i]);
   }
 }
 
