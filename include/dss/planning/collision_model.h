@@ -1,0 +1,179 @@
+// The collision model a planner checks: a robot (links with convex elements), a planning
+// group (the joints that move), the held values of every other joint, a scene of convex
+// obstacles, and the pairs that are worth checking.
+//
+// Built once per (robot, scene, group):
+//  - links are "moving" when some group joint (or a mimic of one) lies between them and the
+//    root; the others never move relative to the world, so they are never checked against the
+//    scene, and a self pair of two non-moving links is dropped;
+//  - self pairs come from selfCollisionPairs() (adjacent, rigidly attached, SRDF-disabled and
+//    scene-ACM-allowed pairs removed);
+//  - robot-scene pairs are (moving link, obstacle) pairs the scene's ACM does not allow;
+//  - obstacle pruning: every moving link stays inside a ball about the origin of the first
+//    group joint above it (radius: the joint offsets down the chain, prismatic travel and the
+//    link's geometry); obstacles whose box no such ball reaches (plus the scene padding) are
+//    dropped.
+// Each link and each element carries a bounding sphere in its link frame; with the link poses
+// of a state they give a cheap world-space prefilter before the exact narrow phase. The
+// narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "dss/robot/collision_pairs.h"
+#include "dss/robot/kinematics.h"
+#include "dss/robot/robot_model.h"
+#include "dss/robot/srdf.h"
+#include "dss/scene/scene.h"
+
+namespace dss {
+
+struct CollisionModelOptions {
+  /// Drop obstacles that no moving link can reach.
+  bool prune_obstacles = true;
+  /// Margin added to the reach test (use the scene padding of the checkers).
+  double prune_margin = 0.0;
+  /// Drop self pairs of links rigidly attached to each other.
+  bool exclude_rigid = true;
+};
+
+class CollisionModel {
+ public:
+  /// One convex collision element of a link with geometry.
+  struct Element {
+    int link = -1;                ///< model link index
+    int slot = -1;                ///< index into slots()
+    const CollisionElement* source = nullptr;  ///< in robot()
+    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
+    double radius = 0.0;
+  };
+  /// A link with geometry.
+  struct Slot {
+    int link = -1;
+    bool moves = false;           ///< moves with the group
+    int first_element = 0;        ///< elements [first_element, first_element + num_elements)
+    int num_elements = 0;
+    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere of all elements
+    double radius = 0.0;
+    std::vector<int> obstacles;   ///< kept obstacles this slot is checked against
+    /// Reach ball in the world (moving slots): every pose of the link stays inside.
+    Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
+    double reach_radius = 0.0;
+  };
+  struct SelfPair {
+    int a = -1, b = -1;  ///< slots
+  };
+
+  /// `group_active`: active joint indices of the group (empty: every active joint).
+  /// `held`: one value per active joint of the model, used for joints outside the group (and
+  /// to place fixed frames for resolveFrames()). `scene` is taken by value: its frames are
+  /// resolved with the robot's non-moving links and its obstacles pruned. Throws on an
+  /// inconsistent input (names the scene, the object or the link).
+  CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
+                 std::vector<int> group_active, std::vector<double> held,
+                 const CollisionModelOptions& options = {});
+
+  const RobotModel& robot() const { return *robot_; }
+  const Kinematics& kinematics() const { return kin_; }
+  const Scene& scene() const { return scene_; }  ///< kept obstacles only
+  const std::vector<int>& groupActive() const { return group_active_; }
+  const std::vector<double>& held() const { return held_; }
+  const std::vector<Element>& elements() const { return elements_; }
+  const std::vector<Slot>& slots() const { return slots_; }
+  const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
+  const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
+  const SelfCollisionPairs& selfPairReport() const { return self_report_; }
+  bool linkMovesWithGroup(int link) const { return moves_[link]; }
+
+  std::size_t obstaclesBefore() const { return obstacles_before_; }
+  std::size_t scenePairs() const { return scene_pairs_; }
+  std::size_t scenePairsBefore() const { return scene_pairs_before_; }
+  /// e.g. "kept 12 of 40 obstacles, 60 of 400 robot-scene link pairs, 21 of 55 self link pairs"
+  std::string summary() const;
+  std::vector<std::string> warnings;
+
+  /// Sweeps the pairs in order (robot vs scene, then self) with sphere prefilters and calls the
+  /// narrow phase for the element pairs that survive; returns true at the first collision.
+  ///   scene(element, X_WS, obstacle) -> bool collides
+  ///   self(element_a, X_WA, element_b, X_WB) -> bool collides
+  /// X_WL: link poses from kinematics().computeLinkPoses for the state.
+  template <class SceneNarrow, class SelfNarrow>
+  bool anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
+                    SceneNarrow&& scene, SelfNarrow&& self) const;
+
+ private:
+  void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
+
+  std::shared_ptr<const RobotModel> robot_;
+  Kinematics kin_;
+  Scene scene_;
+  std::vector<int> group_active_;
+  std::vector<double> held_;
+  std::vector<char> moves_;
+  std::vector<Element> elements_;
+  std::vector<Slot> slots_;
+  std::vector<SelfPair> self_pairs_;
+  std::vector<Aabb> boxes_;
+  SelfCollisionPairs self_report_;
+  std::size_t obstacles_before_ = 0;
+  std::size_t scene_pairs_ = 0;
+  std::size_t scene_pairs_before_ = 0;
+};
+
+namespace detail {
+inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
+  const Eigen::Vector3d d = (b.lower - p).cwiseMax(p - b.upper).cwiseMax(0.0);
+  return d.squaredNorm();
+}
+}  // namespace detail
+
+template <class SceneNarrow, class SelfNarrow>
+bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding,
+                                  double self_padding, SceneNarrow&& scene, SelfNarrow&& self) const {
+  // Robot vs scene.
+  for (const Slot& s : slots_) {
+    if (s.obstacles.empty()) continue;
+    const Eigen::Isometry3d& X = X_WL[s.link];
+    const Eigen::Vector3d c = X * s.center_L;
+    const double r = s.radius + scene_padding;
+    for (int o : s.obstacles) {
+      const Aabb& box = boxes_[o];
+      if (detail::sqDistPointAabb(c, box) > r * r) continue;
+      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+        const Element& el = elements_[e];
+        if (s.num_elements > 1) {
+          const double re = el.radius + scene_padding;
+          if (detail::sqDistPointAabb(X * el.center_L, box) > re * re) continue;
+        }
+        const Eigen::Isometry3d X_WS = X * el.source->X_LS;
+        if (scene(e, X_WS, o)) return true;
+      }
+    }
+  }
+  // Self pairs.
+  for (const SelfPair& p : self_pairs_) {
+    const Slot& sa = slots_[p.a];
+    const Slot& sb = slots_[p.b];
+    const Eigen::Isometry3d& XA = X_WL[sa.link];
+    const Eigen::Isometry3d& XB = X_WL[sb.link];
+    const double r = sa.radius + sb.radius + self_padding;
+    if ((XA * sa.center_L - XB * sb.center_L).squaredNorm() > r * r) continue;
+    for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
+      const Element& a = elements_[ea];
+      const Eigen::Vector3d ca = XA * a.center_L;
+      for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
+        const Element& b = elements_[eb];
+        const double rr = a.radius + b.radius + self_padding;
+        if ((ca - XB * b.center_L).squaredNorm() > rr * rr) continue;
+        if (self(ea, XA * a.source->X_LS, eb, XB * b.source->X_LS)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace dss

@@ -1,0 +1,70 @@
+// The OMPL state space of a planning group, and the map between its states and the robot's
+// joint values.
+//
+// A group's bounded joints (revolute, prismatic) become one RealVectorStateSpace with the
+// URDF limits, in group order. When the group has continuous joints, the space is a
+// CompoundStateSpace: the real-vector part first (if any), then one SO2StateSpace per
+// continuous joint. Joints outside the group are held at fixed values (typically a request's
+// start state; a warning is recorded when such a value lies outside its limits, e.g. Panda
+// fingers at 0.065 against an upper limit of 0.04). toJoints() also validates: non-finite
+// values and values outside the bounds make it return false, so NaN/Inf states are invalid.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ompl/base/StateSpace.h>
+
+#include "dss/robot/robot_model.h"
+
+namespace dss {
+
+class GroupStateMap {
+ public:
+  /// `group_active`: active joint indices (empty: all). `held`: one value per active joint.
+  GroupStateMap(std::shared_ptr<const RobotModel> robot, std::vector<int> group_active,
+                std::vector<double> held);
+
+  const ompl::base::StateSpacePtr& space() const { return space_; }
+  std::size_t dimension() const { return group_.size(); }
+  const std::vector<int>& groupActive() const { return group_; }
+  const std::vector<std::string>& jointNames() const { return names_; }
+  const std::vector<double>& held() const { return held_; }
+  const RobotModel& robot() const { return *robot_; }
+  /// Lower/upper bound of group joint i (continuous: -pi, pi).
+  double lower(std::size_t i) const { return lo_[i]; }
+  double upper(std::size_t i) const { return hi_[i]; }
+
+  /// Writes every active joint value of the robot (held values, then the state's group values).
+  /// Returns false (q partially written) when a value is non-finite or out of bounds.
+  bool toJoints(const ompl::base::State* s, double* q) const;
+  /// Group values (group order) <-> state.
+  void toGroupValues(const ompl::base::State* s, double* g) const;
+  void fromGroupValues(const double* g, ompl::base::State* s) const;
+  /// Group values from a joint-name map; missing names take the held value.
+  std::vector<double> groupValues(const std::map<std::string, double>& by_name) const;
+
+  std::vector<std::string> warnings;
+
+ private:
+  std::shared_ptr<const RobotModel> robot_;
+  std::vector<int> group_;
+  std::vector<double> held_;
+  std::vector<std::string> names_;
+  std::vector<double> lo_, hi_;
+  std::vector<char> continuous_;
+  // Where group joint i lives: component (-1: the state is a plain RealVector) and index.
+  std::vector<int> component_, index_;
+  bool plain_ = true;
+  ompl::base::StateSpacePtr space_;
+};
+
+/// Held values of every active joint: the model's default state, then `overrides` by name
+/// (scene robot state, request start). Unknown names are skipped (returned in `ignored`).
+std::vector<double> heldState(const RobotModel& robot,
+                              const std::vector<std::map<std::string, double>>& overrides,
+                              std::vector<std::string>* ignored = nullptr);
+
+}  // namespace dss

@@ -1,0 +1,85 @@
+// OMPL state validity checkers on a CollisionModel: DSS (the product) and FCL (the reference
+// that MoveIt users know), with the same model, pruning, pairs and state mapping.
+//
+// isValid(state): bounds first (NaN/Inf or out-of-bounds values are invalid, never a crash),
+// then forward kinematics into per-thread scratch (no allocation per call once a thread has
+// warmed up; the only shared mutable state is a set of atomic counters), then robot vs scene
+// and self pairs, stopping at the first collision. Both checkers are const and thread-safe.
+//
+// clearance(): not computed (specs_.clearanceComputationType stays NONE); DSS is a decision
+// procedure, and a lower bound is future work.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ompl/base/StateValidityChecker.h>
+
+#include "dss/core/any_shape_query.h"
+#include "dss/planning/collision_model.h"
+#include "dss/planning/group_state_space.h"
+
+namespace dss {
+
+struct CheckerCounters {
+  std::uint64_t checks = 0;      ///< isValid calls
+  std::uint64_t invalid_input = 0;  ///< out of bounds or non-finite
+  std::uint64_t collisions = 0;  ///< states found in collision
+  std::uint64_t pair_tests = 0;  ///< narrow-phase calls
+  std::uint64_t cap_hits = 0;    ///< DSS answers at the iteration cap (counted as collisions)
+};
+
+/// Common part: mapping, scratch, counters. Subclasses supply the narrow phase.
+class ModelValidityChecker : public ompl::base::StateValidityChecker {
+ public:
+  ModelValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                       std::shared_ptr<const CollisionModel> model,
+                       std::shared_ptr<const GroupStateMap> map, double scene_padding,
+                       double self_padding);
+
+  bool isValid(const ompl::base::State* state) const override;
+  /// Validity of a full active-joint vector (no bounds check).
+  bool isValidJoints(const double* q) const;
+
+  virtual std::string name() const = 0;
+  CheckerCounters counters() const;
+  void resetCounters();
+  const CollisionModel& model() const { return *model_; }
+  const GroupStateMap& stateMap() const { return *map_; }
+
+ protected:
+  virtual bool collides(const Eigen::Isometry3d* X_WL) const = 0;
+
+  std::shared_ptr<const CollisionModel> model_;
+  std::shared_ptr<const GroupStateMap> map_;
+  double scene_padding_ = 0.0;
+  double self_padding_ = 0.0;
+  mutable std::atomic<std::uint64_t> checks_{0}, invalid_input_{0}, collisions_{0}, pair_tests_{0},
+      cap_hits_{0};
+};
+
+struct DssCheckerSettings {
+  Options options;  ///< mode (exact by default) and iteration cap
+  Algorithm algorithm = Algorithm::kDss;
+  double scene_padding = 0.0;  ///< "valid" means distance > padding to every obstacle
+  double self_padding = 0.0;
+};
+
+class DssValidityChecker : public ModelValidityChecker {
+ public:
+  using Settings = DssCheckerSettings;
+  DssValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                     std::shared_ptr<const CollisionModel> model,
+                     std::shared_ptr<const GroupStateMap> map, const Settings& settings = {});
+  std::string name() const override { return "dss"; }
+
+ protected:
+  bool collides(const Eigen::Isometry3d* X_WL) const override;
+
+ private:
+  Settings settings_;
+};
+
+}  // namespace dss

@@ -1,0 +1,273 @@
+// dss_check: validity of robot states (CSV, or uniform random ones) against a scene with one
+// or several checkers. stdout: 1/0 per state for the first checker; stderr: one JSON summary
+// per checker (states, valid, median microseconds per state over repetitions, disagreements
+// against the first checker). --describe prints the model as JSON instead.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "dss/planning/fcl_validity_checker.h"
+#include "dss/planning/planning_problem.h"
+#include "dss/scene/scene_loader.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
+    "                 (--states FILE.csv | --random N [--seed S])\n"
+    "                 [--checker dss|fcl-hull|fcl-mesh[,...]] [--padding r] [--self-padding r]\n"
+    "                 [--repeat K] [--describe]\n";
+
+struct Csv {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream is(s);
+  while (std::getline(is, cur, sep)) {
+    const auto b = cur.find_first_not_of(" \t\r");
+    const auto e = cur.find_last_not_of(" \t\r");
+    out.push_back(b == std::string::npos ? "" : cur.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+Csv readCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  Csv csv;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    auto cells = split(line, ',');
+    if (csv.names.empty()) {
+      csv.names = cells;
+      for (const auto& n : csv.names)
+        if (n.empty()) throw std::runtime_error(path + ":" + std::to_string(lineno) + ": empty joint name in header");
+      continue;
+    }
+    if (cells.size() != csv.names.size())
+      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": " + std::to_string(cells.size()) +
+                               " values, header has " + std::to_string(csv.names.size()));
+    std::vector<double> row;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      char* end = nullptr;
+      const double v = std::strtod(cells[i].c_str(), &end);
+      if (cells[i].empty() || *end != '\0')
+        throw std::runtime_error(path + ":" + std::to_string(lineno) + ": column " + csv.names[i] +
+                                 ": '" + cells[i] + "' is not a number");
+      row.push_back(v);  // NaN/inf are accepted: such states are invalid, not input errors
+    }
+    csv.rows.push_back(std::move(row));
+  }
+  if (csv.names.empty()) throw std::runtime_error(path + ": no header line");
+  return csv;
+}
+
+nlohmann::json describe(const dss::Problem& p) {
+  using nlohmann::json;
+  const dss::CollisionModel& m = *p.model;
+  const dss::RobotModel& r = m.robot();
+  json j;
+  j["robot"] = r.name;
+  j["group"] = p.group;
+  j["group_joints"] = p.map->jointNames();
+  json links = json::array();
+  for (const auto& s : m.slots()) {
+    json l;
+    l["name"] = r.links[s.link].name;
+    l["moves"] = s.moves;
+    l["bounding_radius"] = s.radius;
+    if (s.moves) l["reach_radius"] = s.reach_radius;
+    json els = json::array();
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+      const auto& ce = *m.elements()[e].source;
+      json x;
+      x["shape"] = dss::shapeTypeName(ce.shape);
+      x["description"] = ce.description;
+      if (const auto* h = std::get_if<dss::ConvexHull>(&ce.shape)) x["hull_vertices"] = h->size();
+      els.push_back(x);
+    }
+    l["elements"] = els;
+    l["obstacles_checked"] = s.obstacles.size();
+    links.push_back(l);
+  }
+  j["links"] = links;
+  json joints = json::array();
+  for (const auto& jt : r.joints) {
+    json x;
+    x["name"] = jt.name;
+    x["type"] = dss::toString(jt.type);
+    if (jt.limits.has_position_limits) x["limits"] = {jt.limits.lower, jt.limits.upper};
+    joints.push_back(x);
+  }
+  j["joints"] = joints;
+  json obs = json::array();
+  for (const auto& o : m.scene().obstacles) obs.push_back({{"name", o.name}, {"shape", dss::describeShape(o.shape)}});
+  j["obstacles_kept"] = obs;
+  j["obstacles_total"] = m.obstaclesBefore();
+  json pairs = json::array();
+  for (const auto& sp : m.selfPairs())
+    pairs.push_back({r.links[m.slots()[sp.a].link].name, r.links[m.slots()[sp.b].link].name});
+  j["self_pairs"] = pairs;
+  j["robot_scene_pairs"] = m.scenePairs();
+  j["robot_scene_pairs_total"] = m.scenePairsBefore();
+  j["summary"] = m.summary();
+  j["warnings"] = p.warnings;
+  return j;
+}
+
+int run(int argc, char** argv) {
+  std::string robot, srdf, scene_path, group, states, checkers = "dss";
+  double padding = 0.0, self_padding = 0.0;
+  long random_n = 0;
+  unsigned long seed = 1;
+  int repeat = 0;
+  bool do_describe = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--robot") robot = value();
+    else if (a == "--srdf") srdf = value();
+    else if (a == "--scene") scene_path = value();
+    else if (a == "--group") group = value();
+    else if (a == "--states") states = value();
+    else if (a == "--checker") checkers = value();
+    else if (a == "--padding") padding = std::stod(value());
+    else if (a == "--self-padding") self_padding = std::stod(value());
+    else if (a == "--random") random_n = std::stol(value());
+    else if (a == "--seed") seed = std::stoul(value());
+    else if (a == "--repeat") repeat = std::stoi(value());
+    else if (a == "--describe") do_describe = true;
+    else if (a == "-h" || a == "--help") {
+      std::cout << kUsage;
+      return 0;
+    } else throw std::invalid_argument("unknown argument '" + a + "'\n" + kUsage);
+  }
+  if (robot.empty()) throw std::invalid_argument(std::string("--robot is required\n") + kUsage);
+  if (!do_describe && states.empty() && random_n <= 0)
+    throw std::invalid_argument(std::string("--states or --random is required\n") + kUsage);
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::RNG::setSeed(seed);
+
+  const dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  dss::Scene scene;
+  if (!scene_path.empty()) scene = dss::loadScene(scene_path);
+  Csv csv;
+  if (!states.empty()) csv = readCsv(states);
+  if (group.empty() && !states.empty() && !r.srdf) group = "";
+  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, padding);
+  for (const auto& w : p.warnings) std::cerr << "dss_check: warning: " << w << "\n";
+  if (do_describe) {
+    std::cout << describe(p).dump(2) << "\n";
+    return 0;
+  }
+
+  // States as OMPL states of the group space.
+  const auto& names = p.map->jointNames();
+  std::vector<ompl::base::State*> st;
+  if (!states.empty()) {
+    std::vector<int> column(names.size(), -1);
+    for (std::size_t c = 0; c < csv.names.size(); ++c) {
+      auto it = std::find(names.begin(), names.end(), csv.names[c]);
+      if (it == names.end()) {
+        if (r.model->jointIndex(csv.names[c]) < 0)
+          throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of " + robot);
+        throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of group '" +
+                                 p.group + "'");
+      }
+      column[it - names.begin()] = int(c);
+    }
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (column[i] < 0) throw std::runtime_error(states + ": header lacks group joint '" + names[i] + "'");
+    std::vector<double> g(names.size());
+    for (const auto& row : csv.rows) {
+      for (std::size_t i = 0; i < names.size(); ++i) g[i] = row[column[i]];
+      auto* s = p.si->allocState();
+      p.map->fromGroupValues(g.data(), s);
+      st.push_back(s);
+    }
+  } else {
+    auto sampler = p.si->allocStateSampler();
+    for (long i = 0; i < random_n; ++i) {
+      auto* s = p.si->allocState();
+      sampler->sampleUniform(s);
+      st.push_back(s);
+    }
+  }
+
+  std::vector<std::string> names_list;
+  {
+    std::istringstream is(checkers);
+    std::string c;
+    while (std::getline(is, c, ',')) names_list.push_back(c);
+  }
+  if (repeat <= 0) repeat = st.size() >= 10000 ? 5 : st.size() >= 1000 ? 11 : 31;
+  std::vector<char> first;
+  for (std::size_t k = 0; k < names_list.size(); ++k) {
+    dss::CheckerConfig cfg;
+    cfg.checker = names_list[k];
+    cfg.scene_padding = padding;
+    cfg.self_padding = self_padding;
+    auto checker = dss::makeChecker(p, cfg);
+    std::vector<char> valid(st.size());
+    std::vector<double> per_state;
+    for (int rep = 0; rep < repeat; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (std::size_t i = 0; i < st.size(); ++i) valid[i] = checker->isValid(st[i]);
+      const auto t1 = std::chrono::steady_clock::now();
+      per_state.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() /
+                          std::max<std::size_t>(1, st.size()));
+    }
+    std::sort(per_state.begin(), per_state.end());
+    const auto c = checker->counters();
+    nlohmann::json j;
+    j["checker"] = checker->name();
+    j["states"] = st.size();
+    j["valid"] = std::count(valid.begin(), valid.end(), 1);
+    j["us_per_state"] = per_state.empty() ? 0.0 : per_state[per_state.size() / 2];
+    j["repetitions"] = repeat;
+    j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
+    j["cap_hits"] = c.cap_hits;
+    j["model"] = p.model->summary();
+    if (checker->name() != "dss") j["solver"] = dss::FclValidityChecker::solverDescription();
+    if (k == 0) {
+      first = valid;
+      for (char v : valid) std::cout << (v ? 1 : 0) << "\n";
+    } else {
+      std::size_t dis = 0;
+      for (std::size_t i = 0; i < valid.size(); ++i) dis += valid[i] != first[i];
+      j["disagreements"] = dis;
+    }
+    std::cerr << j.dump() << "\n";
+  }
+  for (auto* s : st) p.si->freeState(s);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "dss_check: " << e.what() << "\n";
+    return 1;
+  }
+}

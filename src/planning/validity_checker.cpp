@@ -1,0 +1,115 @@
+// ModelValidityChecker (mapping, scratch, counters) and DssValidityChecker.
+#include "dss/planning/validity_checker.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+namespace dss {
+
+namespace {
+// Per-thread scratch, shared by every checker a thread uses; it grows to the largest model
+// and then never allocates again.
+struct Scratch {
+  std::vector<double> q;
+  std::vector<Eigen::Isometry3d> X_WL;
+  void reserve(std::size_t joints, std::size_t links) {
+    if (q.size() < joints) q.resize(joints);
+    if (X_WL.size() < links) X_WL.resize(links, Eigen::Isometry3d::Identity());
+  }
+};
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+}  // namespace
+
+ModelValidityChecker::ModelValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                           std::shared_ptr<const CollisionModel> model,
+                                           std::shared_ptr<const GroupStateMap> map,
+                                           double scene_padding, double self_padding)
+    : ompl::base::StateValidityChecker(si), model_(std::move(model)), map_(std::move(map)),
+      scene_padding_(scene_padding), self_padding_(self_padding) {
+  specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::NONE;
+  specs_.hasValidDirectionComputation = false;
+}
+
+bool ModelValidityChecker::isValid(const ompl::base::State* state) const {
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  Scratch& s = scratch();
+  s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
+  if (!map_->toJoints(state, s.q.data())) {
+    invalid_input_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  model_->kinematics().computeLinkPoses(s.q.data(), s.X_WL.data());
+  if (collides(s.X_WL.data())) {
+    collisions_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  return true;
+}
+
+bool ModelValidityChecker::isValidJoints(const double* q) const {
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  Scratch& s = scratch();
+  s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
+  model_->kinematics().computeLinkPoses(q, s.X_WL.data());
+  if (collides(s.X_WL.data())) {
+    collisions_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  return true;
+}
+
+CheckerCounters ModelValidityChecker::counters() const {
+  CheckerCounters c;
+  c.checks = checks_.load();
+  c.invalid_input = invalid_input_.load();
+  c.collisions = collisions_.load();
+  c.pair_tests = pair_tests_.load();
+  c.cap_hits = cap_hits_.load();
+  return c;
+}
+
+void ModelValidityChecker::resetCounters() {
+  checks_ = 0;
+  invalid_input_ = 0;
+  collisions_ = 0;
+  pair_tests_ = 0;
+  cap_hits_ = 0;
+}
+
+DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                       std::shared_ptr<const CollisionModel> model,
+                                       std::shared_ptr<const GroupStateMap> map, const Settings& settings)
+    : ModelValidityChecker(si, std::move(model), std::move(map), settings.scene_padding,
+                           settings.self_padding),
+      settings_(settings) {}
+
+bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
+  const CollisionModel& m = *model_;
+  const auto& elements = m.elements();
+  const auto& obstacles = m.scene().obstacles;
+  std::uint64_t tests = 0;
+  bool cap = false;
+  auto decideResult = [&](const Result& r) {
+    ++tests;
+    if (r.status == Status::kIterationLimit) cap = true;
+    return r.intersect;
+  };
+  const bool hit = m.anyCollision(
+      X_WL, scene_padding_, self_padding_,
+      [&](int e, const Eigen::Isometry3d& X_WS, int o) {
+        const Obstacle& ob = obstacles[o];
+        return decideResult(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO,
+                                      settings_.options, scene_padding_, settings_.algorithm));
+      },
+      [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
+        return decideResult(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
+                                      settings_.options, self_padding_, settings_.algorithm));
+      });
+  pair_tests_.fetch_add(tests, std::memory_order_relaxed);
+  if (cap) cap_hits_.fetch_add(1, std::memory_order_relaxed);
+  return hit;
+}
+
+}  // namespace dss
