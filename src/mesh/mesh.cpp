@@ -76,35 +76,38 @@ QhullResult runQhull(const std::vector<Eigen::Vector3d>& pts) {
   const int exitcode = qh_new_qhull(qh, 3, static_cast<int>(pts.size()), coords.data(), False,
                                     flags, nullptr, devnull);
   if (exitcode == 0) {
-    std::map<int, int> index;  // input point id -> hull vertex index
+    std::vector<int> index(pts.size(), -1);  // input point id -> hull vertex index
     vertexT* vertex;
     FORALLvertices {
       const int id = qh_pointid(qh, vertex->point);
-      index.emplace(id, static_cast<int>(res.vertices.size()));
+      index[id] = static_cast<int>(res.vertices.size());
       res.vertices.push_back(pts[id]);
     }
-    std::vector<std::set<int>> nb(res.vertices.size());
+    std::vector<std::vector<int>> nb(res.vertices.size());
     facetT* facet;
     FORALLfacets {
       int tri[3];
       int n = 0;
       vertexT** vertexp;
       FOREACHvertex_(facet->vertices) {
-        if (n < 3) tri[n] = index.at(qh_pointid(qh, vertex->point));
+        if (n < 3) tri[n] = index[qh_pointid(qh, vertex->point)];
         ++n;
       }
       if (n != 3) continue;  // with Qt every facet is a triangle
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
-          if (a != b) nb[tri[a]].insert(tri[b]);
+          if (a != b) nb[tri[a]].push_back(tri[b]);
       const Eigen::Vector3d& p0 = res.vertices[tri[0]];
       const Eigen::Vector3d normal(facet->normal[0], facet->normal[1], facet->normal[2]);
       const Eigen::Vector3d c = (res.vertices[tri[1]] - p0).cross(res.vertices[tri[2]] - p0);
       if (c.dot(normal) < 0) std::swap(tri[1], tri[2]);
       res.triangles.push_back({tri[0], tri[1], tri[2]});
     }
-    res.neighbours.resize(nb.size());
-    for (std::size_t i = 0; i < nb.size(); ++i) res.neighbours[i].assign(nb[i].begin(), nb[i].end());
+    for (auto& list : nb) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    res.neighbours = std::move(nb);
     res.ok = res.vertices.size() >= 4;
   }
   qh_freeqhull(qh, !qh_ALL);
