@@ -70,6 +70,7 @@ Kinematics::Kinematics(const RobotModel& model, bool all_links)
     s.link = static_cast<int>(l);
     s.ref = ref == root_ ? -1 : ref;
     s.R_c = X.linear();
+    s.rotates = !s.R_c.isIdentity(0.0);  // exact identity only: skipping must not change results
     s.p_c = X.translation();
     s.axis = joint.axis;
     s.multiplier = 1.0;
@@ -110,7 +111,7 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
   for (const Step& s : steps_) {
     const Eigen::Isometry3d& X_ref = s.ref < 0 ? X_WR_ : X_WL[s.ref];
     Eigen::Isometry3d& X = X_WL[s.link];
-    Eigen::Matrix3d R = X_ref.linear() * s.R_c;
+    Eigen::Matrix3d R = s.rotates ? Eigen::Matrix3d(X_ref.linear() * s.R_c) : Eigen::Matrix3d(X_ref.linear());
     Eigen::Vector3d p = X_ref.linear() * s.p_c + X_ref.translation();
     if (s.motion != Motion::kNone) {
       const double v = s.multiplier * q[s.q_index] + s.offset;

@@ -49,6 +49,7 @@ class Kinematics {
     int ref;  // computed link whose pose this one starts from; -1: the base pose
     Eigen::Matrix3d R_c;  // constant transform from ref to the joint frame
     Eigen::Vector3d p_c;
+    bool rotates;  // R_c is not exactly the identity
     Motion motion;
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int q_index;           // active joint index read
