@@ -131,7 +131,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     result.status = Status::kInvalidInput;
     return result;
   }
-  pole.norm = pole.hi.norm();
+  pole.norm = Poly::normBound(pole.hi);
   if (pole.hi.isZero(0) && pole.lo.isZero(0)) return result;  // centres coincide
   poly.init(pole);
 
@@ -166,10 +166,10 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
         result.separating_direction = n.template cast<double>();
         return result;
       } else {
-        const W nn = n.norm();
+        const W nn = Poly::normBound(n);  // bounds |n|: no square root needed
         const W u = std::numeric_limits<W>::epsilon() / 2;
         // Certified when even the rounding of both supports and of the dot cannot lift it.
-        if (t + nn * (diff.err_scale + W(4) * u * pole.hi.norm()) < W(0)) {
+        if (t + nn * (diff.err_scale + W(4) * u * Poly::normBound(pole.hi)) < W(0)) {
           result.intersect = false;
           result.separating_direction = n;
           return result;
@@ -188,7 +188,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
         // the supports): keep searching with q, which is a point of P up to rounding.
       }
     }
-    pole.norm = pole.hi.norm();
+    pole.norm = Poly::normBound(pole.hi);
     switch (poly.clip(pole)) {
       case ClipResult::kEmpty:
         return result;

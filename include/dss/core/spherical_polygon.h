@@ -19,7 +19,8 @@
 namespace dss::detail {
 
 /// A point of the Minkowski difference: hi is its floating-point value; in the exact mode lo
-/// holds the rounding error of hi = fl(a - b), so that hi + lo = a - b exactly.
+/// holds the rounding error of hi = fl(a - b), so that hi + lo = a - b exactly. norm is an
+/// upper bound of |hi| (its 1-norm: no square root on the hot path).
 template <class W>
 struct Pole {
   Vec3<W> hi;
@@ -32,11 +33,8 @@ enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow };
 template <class W, bool Exact>
 class SphericalPolygon {
  public:
-  static constexpr int kCapacity = 48;
-  // Relative error bound of a sign computed from the cached vertex v_i = fl(p_i x p_{i+1}):
-  // cross products and a dot product (about 10 u) plus the ignored lo parts (3 u); 16 u is
-  // a safe margin. Below it the exact predicate decides.
-  static constexpr W kFilter = W(16) * std::numeric_limits<W>::epsilon() / W(2);
+  static constexpr int kCapacity = 32;
+  static constexpr W kUnit = std::numeric_limits<W>::epsilon() / W(2);
 
   void init(const Pole<W>& p0) {
     poles_[0] = p0;
@@ -45,14 +43,18 @@ class SphericalPolygon {
   int size() const { return count_; }
   const Pole<W>& pole(int i) const { return poles_[i]; }
 
-  /// The next test direction (not normalised): a point inside the polygon.
+  /// The next test direction (not normalised): a point inside the polygon -- the sum of its
+  /// unit vertices (the paper's renormalised average), or the middle of a lune.
   Vec3<W> center() const {
     if (count_ == 1) return -poles_[0].hi;
-    if (count_ == 2) return -(poles_[0].hi / poles_[0].norm + poles_[1].hi / poles_[1].norm);
-    Vec3<W> s = Vec3<W>::Zero();
-    for (int i = 0; i < count_; ++i) s += unit_[i];
+    if (count_ == 2) return -(poles_[0].hi / poles_[0].hi.norm() + poles_[1].hi / poles_[1].hi.norm());
+    Vec3<W> s = unit_[0];
+    for (int i = 1; i < count_; ++i) s += unit_[i];
     return s;
   }
+
+  /// An upper bound of |hi| without a square root.
+  static W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
 
   ClipResult clip(const Pole<W>& q) {
     if (count_ == 1) return clipHemisphere(q);
@@ -61,14 +63,14 @@ class SphericalPolygon {
   }
 
  private:
-  // Sign of det(a, b, q) given the cached fl cross product v = a x b and the bound |a||b|.
-  static int detSign(const Vec3<W>& v, W bound, const Pole<W>& a, const Pole<W>& b,
-                     const Pole<W>& q) {
-    const W d = v.dot(q.hi);
+  // Sign of det(a, b, q) = (a x b).q from the cached unit vertex u = fl((a x b)/|a x b|) and
+  // its error bound e: |u.q - det/|a x b|| <= e |q|_1. Below it the exact predicate decides.
+  static int detSign(const Vec3<W>& u, W e, const Pole<W>& a, const Pole<W>& b, const Pole<W>& q) {
+    const W d = u.dot(q.hi);
     if constexpr (!Exact) {
       return (d > W(0)) - (d < W(0));
     } else {
-      if (std::abs(d) > kFilter * bound * q.norm) return (d > W(0)) - (d < W(0));
+      if (std::abs(d) > e * q.norm) return (d > W(0)) - (d < W(0));
       double hi[3][3], lo[3][3];
       for (int k = 0; k < 3; ++k) {
         hi[0][k] = a.hi[k], lo[0][k] = a.lo[k];
@@ -82,26 +84,41 @@ class SphericalPolygon {
   // Sign of the k-th component of a x b (k = 0: a_y b_z - a_z b_y, ...).
   static int crossSign(const Pole<W>& a, const Pole<W>& b, int k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
-    if constexpr (!Exact) {
-      const W m = a.hi[i] * b.hi[j] - a.hi[j] * b.hi[i];
-      return (m > W(0)) - (m < W(0));
-    } else {
-      const W m = a.hi[i] * b.hi[j] - a.hi[j] * b.hi[i];
-      if (std::abs(m) > kFilter * a.norm * b.norm) return (m > W(0)) - (m < W(0));
-      return exact::cross2Sign(a.hi[i], a.lo[i], a.hi[j], a.lo[j], b.hi[i], b.lo[i], b.hi[j],
-                               b.lo[j]);
+    const W m = a.hi[i] * b.hi[j] - a.hi[j] * b.hi[i];
+    if constexpr (Exact) {
+      if (!(std::abs(m) > W(8) * kUnit * a.norm * b.norm))
+        return exact::cross2Sign(a.hi[i], a.lo[i], a.hi[j], a.lo[j], b.hi[i], b.lo[i], b.hi[j],
+                                 b.lo[j]);
     }
+    return (m > W(0)) - (m < W(0));
   }
 
   static int dotSign(const Pole<W>& a, const Pole<W>& b) {
     const W d = a.hi.dot(b.hi);
-    if constexpr (!Exact) {
-      return (d > W(0)) - (d < W(0));
+    if constexpr (Exact) {
+      if (!(std::abs(d) > W(8) * kUnit * a.norm * b.norm)) {
+        const double ah[3] = {a.hi[0], a.hi[1], a.hi[2]}, al[3] = {a.lo[0], a.lo[1], a.lo[2]};
+        const double bh[3] = {b.hi[0], b.hi[1], b.hi[2]}, bl[3] = {b.lo[0], b.lo[1], b.lo[2]};
+        return exact::dotSign(ah, al, bh, bl);
+      }
+    }
+    return (d > W(0)) - (d < W(0));
+  }
+
+  // Unit vertex a x b and the bound of detSign. The error of fl(a x b) is at most about
+  // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
+  // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
+  // covers all of it with margin.
+  void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) {
+    const Vec3<W> v = a.hi.cross(b.hi);
+    const W n2 = v.squaredNorm();
+    if (n2 > W(0)) {
+      const W inv = W(1) / std::sqrt(n2);
+      unit_[i] = v * inv;
+      if constexpr (Exact) err_[i] = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
     } else {
-      if (std::abs(d) > kFilter * a.norm * b.norm) return (d > W(0)) - (d < W(0));
-      const double ah[3] = {a.hi[0], a.hi[1], a.hi[2]}, al[3] = {a.lo[0], a.lo[1], a.lo[2]};
-      const double bh[3] = {b.hi[0], b.hi[1], b.hi[2]}, bl[3] = {b.lo[0], b.lo[1], b.lo[2]};
-      return exact::dotSign(ah, al, bh, bl);
+      unit_[i].setZero();
+      if constexpr (Exact) err_[i] = std::numeric_limits<W>::infinity();  // always exact
     }
   }
 
@@ -109,8 +126,7 @@ class SphericalPolygon {
     poles_[0] = a;
     poles_[1] = b;
     count_ = 2;
-    vert_[0] = a.hi.cross(b.hi);
-    bound_[0] = a.norm * b.norm;
+    cacheVertex(0, a, b);
   }
 
   ClipResult clipHemisphere(const Pole<W>& q) {
@@ -128,7 +144,7 @@ class SphericalPolygon {
 
   ClipResult clipLune(const Pole<W>& q) {
     const Pole<W> p0 = poles_[0], p1 = poles_[1];
-    const int s = detSign(vert_[0], bound_[0], p0, p1, q);
+    const int s = detSign(unit_[0], err(0), p0, p1, q);
     if (s > 0) {  // vertex p0 x p1 cut off: q goes between p0 and p1
       setPolygon3(p0, q, p1);
       return ClipResult::kChanged;
@@ -141,7 +157,7 @@ class SphericalPolygon {
     // where the minor a_k = (p0 x p1)_k is largest (and exactly non-zero).
     int k = 0;
     for (int c = 1; c < 3; ++c)
-      if (std::abs(vert_[0][c]) > std::abs(vert_[0][k])) k = c;
+      if (std::abs(unit_[0][c]) > std::abs(unit_[0][k])) k = c;
     int sk = crossSign(p0, p1, k);
     for (int c = 0; sk == 0 && c < 3; ++c) {
       k = c;
@@ -162,14 +178,20 @@ class SphericalPolygon {
   void setPolygon3(const Pole<W>& a, const Pole<W>& b, const Pole<W>& c) {
     poles_[0] = a, poles_[1] = b, poles_[2] = c;
     count_ = 3;
-    for (int i = 0; i < 3; ++i) cacheVertex(i, poles_[i], poles_[(i + 1) % 3]);
+    cacheVertex(0, a, b);
+    cacheVertex(1, b, c);
+    cacheVertex(2, c, a);
   }
 
-  void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) {
-    vert_[i] = a.hi.cross(b.hi);
-    bound_[i] = a.norm * b.norm;
-    const W n = vert_[i].norm();
-    unit_[i] = n > W(0) ? Vec3<W>(vert_[i] / n) : Vec3<W>::Zero();
+  W err(int i) const {
+    if constexpr (Exact) return err_[i];
+    return W(0);
+  }
+
+  void moveEntry(int to, int from) {
+    poles_[to] = poles_[from];
+    unit_[to] = unit_[from];
+    if constexpr (Exact) err_[to] = err_[from];
   }
 
   ClipResult clipPolygon(const Pole<W>& q) {
@@ -177,12 +199,12 @@ class SphericalPolygon {
     int kept = 0;
     for (int i = 0; i < count_; ++i) {
       const int j = i + 1 == count_ ? 0 : i + 1;
-      keep[i] = detSign(vert_[i], bound_[i], poles_[i], poles_[j], q) < 0;
+      keep[i] = detSign(unit_[i], err(i), poles_[i], poles_[j], q) < 0;
       kept += keep[i];
     }
     if (kept == 0) return ClipResult::kEmpty;
     if (kept == count_) return ClipResult::kUnchanged;
-    // The removed vertices form one cyclic run [first, last]; poles first+1..last go away
+    // The removed vertices form one cyclic run [first, last]: poles first+1..last go away
     // and q joins poles first and last+1.
     int first = -1, last = -1, runs = 0;
     for (int i = 0; i < count_; ++i) {
@@ -192,35 +214,37 @@ class SphericalPolygon {
       if (!keep[i] && keep[next]) last = i;
     }
     if (runs != 1) return ClipResult::kUnchanged;  // inconsistent float signs: no progress
-    const int removed = last >= first ? last - first + 1 : last + count_ - first + 1;
-    const int new_count = count_ - removed + 2;
-    if (new_count > kCapacity) return ClipResult::kOverflow;
-    // New cycle: q, poles last+1, ..., first (the kept chain, in order).
-    Pole<W> poles[kCapacity];
-    Vec3<W> vert[kCapacity], unit[kCapacity];
-    W bound[kCapacity];
-    poles[0] = q;
-    int m = 1;
-    for (int i = (last + 1) % count_;; i = (i + 1) % count_) {
-      poles[m] = poles_[i];
-      if (i != first) {  // vertex between old poles i and i+1 survives
-        vert[m] = vert_[i], unit[m] = unit_[i], bound[m] = bound_[i];
+    if (first <= last) {
+      // ... first | q | last+1 ... : entry i holds pole i and the vertex (pole i, pole i+1).
+      const int removed = last - first;  // poles first+1..last
+      const int new_count = count_ - removed + 1;
+      if (new_count > kCapacity) return ClipResult::kOverflow;
+      const int shift = 1 - removed;
+      if (shift > 0) {
+        for (int i = count_ - 1; i > last; --i) moveEntry(i + shift, i);
+      } else if (shift < 0) {
+        for (int i = last + 1; i < count_; ++i) moveEntry(i + shift, i);
       }
-      ++m;
-      if (i == first) break;
+      count_ = new_count;
+      poles_[first + 1] = q;
+      cacheVertex(first, poles_[first], q);
+      cacheVertex(first + 1, q, poles_[(first + 2) % count_]);
+    } else {
+      // The run wraps: the kept poles last+1..first are contiguous; move them to the front
+      // and append q.
+      const int keep_count = first - last;
+      for (int i = 0; i < keep_count; ++i) moveEntry(i, last + 1 + i);
+      count_ = keep_count + 1;
+      poles_[keep_count] = q;
+      cacheVertex(keep_count - 1, poles_[keep_count - 1], q);
+      cacheVertex(keep_count, q, poles_[0]);
     }
-    for (int i = 0; i < m; ++i) poles_[i] = poles[i];
-    for (int i = 1; i < m - 1; ++i) vert_[i] = vert[i], unit_[i] = unit[i], bound_[i] = bound[i];
-    count_ = m;
-    cacheVertex(0, poles_[0], poles_[1]);        // q x p_{last+1}
-    cacheVertex(m - 1, poles_[m - 1], poles_[0]);  // p_first x q
     return ClipResult::kChanged;
   }
 
   Pole<W> poles_[kCapacity];
-  Vec3<W> vert_[kCapacity];  // vert_[i] = poles_[i] x poles_[i+1] (floating point)
-  Vec3<W> unit_[kCapacity];  // vert_[i] normalised (zero if degenerate)
-  W bound_[kCapacity];       // |poles_[i]| |poles_[i+1]|
+  Vec3<W> unit_[kCapacity];  // unit vertex between poles i and i+1 (zero if degenerate)
+  W err_[Exact ? kCapacity : 1];  // filter bound of detSign (exact mode only)
   int count_ = 0;
 };
 
