@@ -38,7 +38,8 @@ void sinCosForKinematics(double x, double* s, double* c) { fastSinCos(x, s, c); 
 Kinematics::Kinematics(const RobotModel& model, bool all_links)
     : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
   const std::size_t n = model.links.size();
-  for (const auto& j : model.joints) joints_.push_back(&j);
+  for (const auto& j : model.joints)
+    joints_.push_back({j.active_index, j.mimic_active, j.mimic_multiplier, j.mimic_offset});
   // needed[l]: l carries geometry or leads to a link that does.
   std::vector<char> needed(n, all_links ? 1 : 0);
   for (std::size_t l = 0; l < n; ++l)
@@ -100,7 +101,7 @@ Kinematics::Kinematics(const RobotModel& model, bool all_links)
 }
 
 double Kinematics::jointValue(const double* q, int joint) const {
-  const RobotJoint& j = *joints_[joint];
+  const JointRef& j = joints_[joint];
   if (j.active_index >= 0) return q[j.active_index];
   if (j.mimic_active >= 0) return j.mimic_multiplier * q[j.mimic_active] + j.mimic_offset;
   return 0.0;

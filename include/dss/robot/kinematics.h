@@ -8,7 +8,8 @@
 // the output array (pass all_links = true to compute every link). Joint axes along +-x, +-y,
 // +-z (nearly all real robots) take a short path with one sin/cos pair and 12 products.
 // Mimic joints read their leader's value: q = multiplier * q_leader + offset.
-// Thread safety: const queries on one Kinematics may run concurrently.
+// Thread safety: const queries on one Kinematics may run concurrently. A Kinematics keeps
+// no reference to its RobotModel.
 #pragma once
 
 #include <vector>
@@ -59,7 +60,13 @@ class Kinematics {
 
   std::vector<Step> steps_;
   std::vector<int> updated_;
-  std::vector<const RobotJoint*> joints_;
+  struct JointRef {  // copied, so that a Kinematics does not point into its model
+    int active_index;
+    int mimic_active;
+    double mimic_multiplier;
+    double mimic_offset;
+  };
+  std::vector<JointRef> joints_;
   int root_ = 0;
   std::size_t num_links_ = 0;
   std::size_t num_active_ = 0;

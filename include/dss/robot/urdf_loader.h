@@ -8,6 +8,8 @@
 // of URDF radius and length along z); meshes become convex hulls. Floating and planar joints
 // are refused with a message naming the joint. Every error is a std::runtime_error whose
 // message names the file and the element (link, joint, collision index, line).
+// Not thread safe: urdfdom reports through the process-wide console_bridge handler, which is
+// swapped for the duration of a load to capture its messages.
 #pragma once
 
 #include <string>
