@@ -15,7 +15,10 @@ inline void fastSinCos(double x, double* s_out, double* c_out) {
   constexpr double kPio2Mid = 0x1.0b46p-34;     // M_PI_2 - kPio2Hi, exact
   constexpr double kPio2Lo = 6.123233995736766e-17;  // pi/2 - M_PI_2
   static_assert(kPio2Hi + kPio2Mid == M_PI_2, "split of pi/2");
-  const double k = std::nearbyint(x * (2.0 / M_PI));
+  // Round to nearest by the 1.5 * 2^52 trick (exact for |t| < 2^51, default rounding mode):
+  // std::nearbyint is an out-of-line call without SSE4.1.
+  constexpr double kRound = 0x1.8p52;
+  const double k = (x * (2.0 / M_PI) + kRound) - kRound;
   const double r = ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
   const double r2 = r * r;
   // 1/n! for the Taylor series
