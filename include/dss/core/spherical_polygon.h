@@ -47,7 +47,8 @@ class SphericalPolygon {
   /// unit vertices (the paper's renormalised average), or the middle of a lune.
   Vec3<W> center() const {
     if (count_ == 1) return -poles_[0].hi;
-    if (count_ == 2) return -(poles_[0].hi / poles_[0].hi.norm() + poles_[1].hi / poles_[1].hi.norm());
+    if (count_ == 2)  // -(p0/|p0| + p1/|p1|), scaled by |p0||p1| to avoid divisions
+      return -(poles_[0].hi * poles_[1].hi.norm() + poles_[1].hi * poles_[0].hi.norm());
     Vec3<W> s = unit_[0];
     for (int i = 1; i < count_; ++i) s += unit_[i];
     return s;
@@ -109,8 +110,9 @@ class SphericalPolygon {
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
   // covers all of it with margin.
-  void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) {
-    const Vec3<W> v = a.hi.cross(b.hi);
+  void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
+
+  void setUnit(int i, const Vec3<W>& v, const Pole<W>& a, const Pole<W>& b) {
     const W n2 = v.squaredNorm();
     if (n2 > W(0)) {
       const W inv = W(1) / std::sqrt(n2);
@@ -131,14 +133,25 @@ class SphericalPolygon {
 
   ClipResult clipHemisphere(const Pole<W>& q) {
     const Pole<W>& p = poles_[0];
-    const bool parallel = crossSign(p, q, 0) == 0 && crossSign(p, q, 1) == 0 &&
-                          crossSign(p, q, 2) == 0;
+    const Vec3<W> v = p.hi.cross(q.hi);
+    // The floating-point cross product decides "not parallel" when a component clears its
+    // rounding bound (3u |p|_1 |q|_1, doubled); otherwise the exact minors do.
+    const W bound = W(8) * kUnit * p.norm * q.norm;
+    bool parallel;
+    if constexpr (Exact) {
+      parallel = !(std::abs(v.x()) > bound || std::abs(v.y()) > bound || std::abs(v.z()) > bound) &&
+                 crossSign(p, q, 0) == 0 && crossSign(p, q, 1) == 0 && crossSign(p, q, 2) == 0;
+    } else {
+      parallel = v.x() == W(0) && v.y() == W(0) && v.z() == W(0);
+    }
     if (parallel) {
       // q = 0, or q opposite to p: the segment [p, q] in the difference holds the origin.
       if (dotSign(p, q) <= 0) return ClipResult::kEmpty;
       return ClipResult::kUnchanged;
     }
-    setLune(p, q);
+    poles_[1] = q;
+    count_ = 2;
+    setUnit(0, v, p, q);
     return ClipResult::kChanged;
   }
 
