@@ -5,7 +5,9 @@
 // MotionBenchMaker-style problem; with --problems DIR every sceneNNNN.yaml/requestNNNN.yaml
 // pair in DIR. stdout: one JSON object per problem; stderr: progress and a final summary.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -82,6 +84,31 @@ const std::map<std::string, PlannerFactory>& planners() {
   return m;
 }
 
+// Wraps a checker and accumulates the wall time spent in isValid (for the per-problem report).
+class TimedChecker : public ob::StateValidityChecker {
+ public:
+  TimedChecker(const ob::SpaceInformationPtr& si, std::shared_ptr<dss::ModelValidityChecker> inner)
+      : ob::StateValidityChecker(si), inner_(std::move(inner)) {}
+  bool isValid(const ob::State* s) const override {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool v = inner_->isValid(s);
+    ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+    return v;
+  }
+  double seconds() const { return double(ns_.load()) * 1e-9; }
+  void reset() { ns_ = 0; }
+
+ private:
+  std::shared_ptr<dss::ModelValidityChecker> inner_;
+  mutable std::atomic<long long> ns_{0};
+};
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 struct Args {
   std::string robot, srdf, scene, request, problems, planner = "RRTConnect", checker = "dss",
                                                      motion = "discrete", path;
@@ -121,7 +148,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   auto checker = dss::makeChecker(p, cfg);
 
   og::SimpleSetup ss(p.si);
-  ss.setStateValidityChecker(checker);
+  auto timed = std::make_shared<TimedChecker>(p.si, checker);
+  ss.setStateValidityChecker(timed);
   if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
   auto factory = planners().find(a.planner);
   ss.setPlanner(factory->second(p.si));
@@ -150,8 +178,11 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   const bool start_valid = checker->isValid(s0.get());
   const bool goal_valid = checker->isValid(goal->getState(0));
   checker->resetCounters();
+  timed->reset();
 
+  const double cpu0 = threadCpuSeconds();
   const ob::PlannerStatus status = ss.solve(a.time);
+  const double cpu = threadCpuSeconds() - cpu0;
   const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
   const double t = ss.getLastPlanComputationTime();
   const auto counters = checker->counters();
@@ -183,11 +214,13 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["solved"] = solved;
   j["status"] = status.asString();
   j["planning_time_s"] = t;
+  j["planning_cpu_s"] = cpu;  // this thread's CPU time: robust when the machine is shared
   j["path_length"] = length;
   j["path_states"] = path_states;
   j["validity_checks"] = counters.checks;
   j["motion_checks"] = mv->getValidMotionCount() + mv->getInvalidMotionCount();
   j["checker"] = checker->name();
+  j["checking_time_s"] = timed->seconds();
   j["planner"] = a.planner;
   j["motion"] = a.motion;
   j["cap_hits"] = counters.cap_hits;

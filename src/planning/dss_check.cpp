@@ -4,6 +4,7 @@
 // against the first checker). --describe prints the model as JSON instead.
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -24,7 +25,8 @@ const char* kUsage =
     "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
     "                 (--states FILE.csv | --random N [--seed S])\n"
     "                 [--checker dss|fcl-hull|fcl-mesh[,...]] [--padding r] [--self-padding r]\n"
-    "                 [--repeat K] [--describe]\n";
+    "                 [--repeat K] [--describe]\n"
+    "                 [--mode exact|double|float] [--algorithm dss|gjk|hybrid]\n";
 
 struct Csv {
   std::vector<std::string> names;
@@ -41,6 +43,12 @@ std::vector<std::string> split(const std::string& s, char sep) {
     out.push_back(b == std::string::npos ? "" : cur.substr(b, e - b + 1));
   }
   return out;
+}
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 Csv readCsv(const std::string& path) {
@@ -137,6 +145,7 @@ int run(int argc, char** argv) {
   unsigned long seed = 1;
   int repeat = 0;
   bool do_describe = false;
+  std::string mode = "exact", algorithm = "dss";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -155,6 +164,8 @@ int run(int argc, char** argv) {
     else if (a == "--seed") seed = std::stoul(value());
     else if (a == "--repeat") repeat = std::stoi(value());
     else if (a == "--describe") do_describe = true;
+    else if (a == "--mode") mode = value();
+    else if (a == "--algorithm") algorithm = value();
     else if (a == "-h" || a == "--help") {
       std::cout << kUsage;
       return 0;
@@ -225,23 +236,38 @@ int run(int argc, char** argv) {
     cfg.checker = names_list[k];
     cfg.scene_padding = padding;
     cfg.self_padding = self_padding;
+    if (mode == "exact") cfg.dss_options.mode = dss::Mode::kExact;
+    else if (mode == "double") cfg.dss_options.mode = dss::Mode::kDouble;
+    else if (mode == "float") cfg.dss_options.mode = dss::Mode::kFloat;
+    else throw std::invalid_argument("--mode must be exact, double or float");
+    if (algorithm == "dss") cfg.algorithm = dss::Algorithm::kDss;
+    else if (algorithm == "gjk") cfg.algorithm = dss::Algorithm::kGjk;
+    else if (algorithm == "hybrid") cfg.algorithm = dss::Algorithm::kHybrid;
+    else throw std::invalid_argument("--algorithm must be dss, gjk or hybrid");
     auto checker = dss::makeChecker(p, cfg);
     std::vector<char> valid(st.size());
-    std::vector<double> per_state;
+    std::vector<double> per_state, per_state_wall;
+    const double n = double(std::max<std::size_t>(1, st.size()));
     for (int rep = 0; rep < repeat; ++rep) {
       const auto t0 = std::chrono::steady_clock::now();
+      const double c0 = threadCpuSeconds();
       for (std::size_t i = 0; i < st.size(); ++i) valid[i] = checker->isValid(st[i]);
+      const double c1 = threadCpuSeconds();
       const auto t1 = std::chrono::steady_clock::now();
-      per_state.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() /
-                          std::max<std::size_t>(1, st.size()));
+      per_state.push_back((c1 - c0) * 1e6 / n);
+      per_state_wall.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
     }
     std::sort(per_state.begin(), per_state.end());
+    std::sort(per_state_wall.begin(), per_state_wall.end());
     const auto c = checker->counters();
     nlohmann::json j;
     j["checker"] = checker->name();
+    if (checker->name() == "dss") j["mode"] = mode, j["algorithm"] = algorithm;
     j["states"] = st.size();
     j["valid"] = std::count(valid.begin(), valid.end(), 1);
     j["us_per_state"] = per_state.empty() ? 0.0 : per_state[per_state.size() / 2];
+    j["us_per_state_wall"] = per_state_wall.empty() ? 0.0 : per_state_wall[per_state_wall.size() / 2];
+    j["timer"] = "thread CPU time (wall time in us_per_state_wall)";
     j["repetitions"] = repeat;
     j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
     j["cap_hits"] = c.cap_hits;

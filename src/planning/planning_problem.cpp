@@ -57,6 +57,7 @@ std::shared_ptr<ModelValidityChecker> makeChecker(const Problem& p, const Checke
   if (c.checker == "dss") {
     DssCheckerSettings s;
     s.options = c.dss_options;
+    s.algorithm = c.algorithm;
     s.scene_padding = c.scene_padding;
     s.self_padding = c.self_padding;
     return std::make_shared<DssValidityChecker>(p.si, p.model, p.map, s);

@@ -35,6 +35,7 @@ struct CheckerConfig {
   double scene_padding = 0.0;
   double self_padding = 0.0;
   Options dss_options;
+  Algorithm algorithm = Algorithm::kDss;
 };
 
 struct Problem {
