@@ -87,6 +87,17 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       e.slot = int(slots_.size());
       e.source = &ce;
       elementSphere(ce, &e.center_L, &e.radius);
+      if (const auto* hull = std::get_if<ConvexHull>(&ce.shape)) {
+        Eigen::Vector3d blo = hull->points()[0], bhi = blo;
+        for (const auto& p : hull->points()) {
+          blo = blo.cwiseMin(p);
+          bhi = bhi.cwiseMax(p);
+        }
+        e.has_box = true;
+        e.box_center_S = 0.5 * (blo + bhi);
+        // Grown by a relative 1e-9 so that rounding of the centre never cuts a vertex off.
+        e.box.half = 0.5 * (bhi - blo) + Eigen::Vector3d::Constant(1e-9 * (1.0 + bhi.cwiseAbs().maxCoeff() + blo.cwiseAbs().maxCoeff()));
+      }
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);

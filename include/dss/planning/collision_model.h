@@ -50,6 +50,11 @@ class CollisionModel {
     const CollisionElement* source = nullptr;  ///< in robot()
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
     double radius = 0.0;
+    /// For hull elements: a box holding the hull, in the shape frame (axis-aligned there,
+    /// centred at box_center_S); a cheap conservative stage before the hull test.
+    bool has_box = false;
+    Box box;
+    Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
   };
   /// A link with geometry.
   struct Slot {
@@ -86,6 +91,8 @@ class CollisionModel {
   const std::vector<Slot>& slots() const { return slots_; }
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
+  /// Obstacles that are hulls (their world box is then used as a first stage).
+  bool obstacleIsHull(int o) const { return std::holds_alternative<ConvexHull>(scene_.obstacles[o].shape); }
   const SelfCollisionPairs& selfPairReport() const { return self_report_; }
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 

@@ -65,6 +65,9 @@ struct DssCheckerSettings {
   Algorithm algorithm = Algorithm::kDss;
   double scene_padding = 0.0;  ///< "valid" means distance > padding to every obstacle
   double self_padding = 0.0;
+  /// Test a box around each hull (and the world box of hull obstacles) before the hull
+  /// itself: a disjoint box pair is a certified disjoint hull pair.
+  bool box_stage = true;
 };
 
 class DssValidityChecker : public ModelValidityChecker {
