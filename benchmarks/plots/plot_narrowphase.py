@@ -192,6 +192,9 @@ def pairs_of(rows, algo, density_pct):
     return 1
 
 
+kMaxRatio = 2.5  # speed ratios above are drawn at the top edge with their value written
+
+
 def plot_speedup(rows, out, command, note):
     fig, axes = plt.subplots(1, 3, figsize=(16, 5.5), sharey=True)
     any_point = False
@@ -208,7 +211,13 @@ def plot_speedup(rows, out, command, note):
             pts.sort()
             if pts:
                 any_point = True
-                ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="os^Dv"[i], label=title)
+                off = [p for p in pts if p[1] > kMaxRatio]
+                pts = [(d, min(v, kMaxRatio)) for d, v in pts]
+                line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="os^Dv"[i], label=title)
+                for d, v in off:
+                    ax.annotate("%.1f" % v, (d, kMaxRatio), fontsize=7, color=line.get_color(),
+                                xytext=(2, -10), textcoords="offset points")
+        ax.set_ylim(0, kMaxRatio * 1.02)
         ax.axhspan(1.10, 1.25, color="green", alpha=0.12, label="paper: 10-25 % faster")
         ax.axhline(1.0, color="black", lw=0.8)
         density_axis(ax)
@@ -218,7 +227,8 @@ def plot_speedup(rows, out, command, note):
     if not any_point:
         plt.close(fig)
         return None
-    fig.suptitle("DSS and Hybrid against our decision GJK (double), ratio of median speeds", fontsize=11)
+    fig.suptitle("DSS and Hybrid against our decision GJK (double), ratio of median speeds "
+                 "(ratios above %g drawn at the top edge, value written)" % kMaxRatio, fontsize=11)
     footer(fig, command, note)
     fig.tight_layout(rect=(0, 0.06, 1, 0.95))
     path = os.path.join(out, "narrowphase_speedup.png")
@@ -252,11 +262,19 @@ def plot_sweep(rows, out, command, note):
         if vs:
             ax_ratio.plot(vs, [climb[v] / scan[v] for v in vs], color=c, marker=m, label=mode)
     ax_ratio.axhline(1.0, color="black", lw=0.8)
+    threshold = hill_climb_threshold()
+    if threshold:
+        for a in (ax, ax_ratio):
+            a.axvline(threshold, color="gray", ls="--", lw=0.8)
+        ax_ratio.text(threshold, ax_ratio.get_ylim()[1], " kHillClimbMinVertices = %d:\n below it both rows scan" % threshold,
+                      fontsize=8, va="top", color="gray")
     ax_ratio.set_xscale("log", base=2)
     ax_ratio.set_xlabel("vertices per polytope (log scale)")
     ax_ratio.set_ylabel("speed with adjacency / speed with linear scan (dimensionless)")
     ax_ratio.set_title("where hill-climbing pays (> 1): the library climbs from its threshold up")
     ax_ratio.grid(True, which="both", alpha=0.3)
+    for a in (ax, ax_ratio):
+        a.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: "%g" % v))
     ax_ratio.legend(fontsize=8)
     dens = sorted(100 * r["density"] for r in rows if r["algo"] == "dss-exact")
     pairs = sorted({r["pairs"] for r in rows})
@@ -269,6 +287,20 @@ def plot_sweep(rows, out, command, note):
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
+
+
+def hill_climb_threshold():
+    """kHillClimbMinVertices from the library header next to this script (None if absent)."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "include", "dss", "core",
+                          "convex_hull.h")
+    try:
+        with open(header) as f:
+            for line in f:
+                if "kHillClimbMinVertices =" in line:
+                    return int(line.split("=")[1].strip().rstrip(";"))
+    except (OSError, ValueError):
+        pass
+    return None
 
 
 def load_jsonl(path):
