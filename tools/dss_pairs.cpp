@@ -322,6 +322,12 @@ int main(int argc, char** argv) {
   decide(args.algos.front(), args, opt, w, answers);
   printAnswers(args.algos.front(), w, answers);
   std::fflush(stdout);
-  if (args.time) timeRuns(args, opt, w);
+  if (args.time) {
+    if (w.ids.empty()) {
+      std::fprintf(stderr, "%s: no pairs to time\n", file_label.c_str());
+      return kExitUsage;
+    }
+    timeRuns(args, opt, w);
+  }
   return 0;
 }

@@ -57,7 +57,7 @@ class PairsInputError : public std::runtime_error {
 PairSpec parsePairLine(const std::string& text, int line);
 
 /// Reads every line of `in`. A final newline is allowed; any other empty or blank line is an
-/// error, as is an empty input. Throws PairsInputError.
+/// error. An empty input gives no pairs. Throws PairsInputError.
 std::vector<PairSpec> readPairs(std::istream& in);
 
 /// The rotation of a quaternion in ROS order (x y z w), normalised. A zero or non-finite
