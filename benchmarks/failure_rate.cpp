@@ -40,6 +40,7 @@ struct FailureConfig {
   int batch = 1000;
   bool with_double = false;
   std::string json;
+  std::string note;
   std::string command;
 };
 
@@ -52,12 +53,16 @@ const char* kFailureUsage =
     "  --batch B           tetrahedra per batch, all pairs of a batch (default 1000)\n"
     "  --double            also run DSS and GJK in double on the same (float-rounded) vertices\n"
     "  --seed S            generator seed (batch k uses seed + k)\n"
-    "  --json FILE         write the JSON lines to FILE as well as to stdout\n";
+    "  --json FILE         write the JSON lines to FILE as well as to stdout\n"
+    "  --note TEXT         free text stored in the JSON (build commit, machine load)\n";
 
 FailureConfig parseFailureArgs(int argc, char** argv) {
   FailureConfig c;
   c.command = "dss_bench";
-  for (int k = 0; k < argc; ++k) c.command += std::string(" ") + argv[k];
+  for (int k = 0; k < argc; ++k) {
+    const std::string arg = argv[k];
+    c.command += arg.find(' ') == std::string::npos ? " " + arg : " '" + arg + "'";
+  }
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     auto value = [&]() -> std::string {
@@ -91,6 +96,8 @@ FailureConfig parseFailureArgs(int argc, char** argv) {
       c.seed = std::stoull(value());
     } else if (a == "--json") {
       c.json = value();
+    } else if (a == "--note") {
+      c.note = value();
     } else {
       throw std::runtime_error("failure-rate: unknown option '" + a + "'\n" + kFailureUsage);
     }
@@ -208,6 +215,7 @@ int runFailureRate(int argc, char** argv) {
     line["seed"] = cfg.seed;
     line["reference"] = "exact-sat (all pairs)";
     line["seconds"] = total;
+    if (!cfg.note.empty()) line["note"] = cfg.note;
     for (const auto& t : tallies) {
       const double ns = 1e9 * t.seconds / double(done);
       std::printf("  %-13s %12lld %12.3g %10lld %10lld %10lld %8.3f %8d %9.1f\n", t.name.c_str(), t.cap_hits,

@@ -356,7 +356,8 @@ def plot_failure_rate(scan, long_run, out, note):
         density_axis(ax)
         ax.set_ylabel("fraction of pairs (log scale)")
         ax.set_title(what)
-        ax.legend(fontsize=7, loc="lower right")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, loc="lower right")
     cap = lines[0]["max_iterations_cap"]
     desc = ("Failure rate on random tetrahedra (float-rounded vertices), cap %d plane tests; "
             "lines: density scan, stars: long run" % cap)
@@ -366,7 +367,8 @@ def plot_failure_rate(scan, long_run, out, note):
     cmds = []
     for ln in (scan[:1] + long_run[:1]):
         cmds.append(ln["command"])
-    footer(fig, "  |  ".join(cmds), note)
+    notes = [ln["note"] for ln in (scan[:1] + long_run[:1]) if ln.get("note")]
+    footer(fig, "  |  ".join(cmds), "  |  ".join(notes) or note)
     fig.tight_layout(rect=(0, 0.07, 1, 0.95))
     path = os.path.join(out, "failure_rate.png")
     fig.savefig(path, dpi=100)
@@ -395,11 +397,64 @@ def plot_iteration_histogram(long_run, out, note):
     ax.legend(fontsize=8)
     ax.set_title("Plane tests per pair, random tetrahedra at %.1f %% density, %.0e pairs, cap %d" %
                  (100 * ln["density"], ln["pairs"], ln["max_iterations_cap"]))
-    footer(fig, ln["command"], note)
+    footer(fig, ln["command"], ln.get("note") or note)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
     path = os.path.join(out, "failure_rate_iterations.png")
     fig.savefig(path, dpi=100)
     plt.close(fig)
+    return path
+
+
+def write_summary(rows, scan, long_run, path, command):
+    """Markdown tables of the numbers the honest reading quotes (all ratios from one run)."""
+    out = ["# Narrow-phase summary", "", "Data: `%s`" % command, ""]
+    out.append("## Speed over `gjk` (ratio of median pairs/s, same run) and max plane tests")
+    out.append("")
+    out.append("| workload | sigma | density | dss-double/gjk | dss-float/gjk | dss-exact/gjk | hybrid/gjk | "
+               "dss-double/fcl-box | max it dss-double | max it gjk | caps (dss/gjk/hybrid) | wrong (dss-exact/dss-double/dss-float/gjk/hybrid) |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, _ in WORKLOADS:
+        by_sigma = {}
+        for r in rows:
+            if r["workload"] == name:
+                by_sigma.setdefault(r["sigma"], {})[r["algo"]] = r
+        for sigma in sorted(by_sigma):
+            d = by_sigma[sigma]
+            if "gjk" not in d or "dss-double" not in d:
+                continue
+            g = d["gjk"]["mpairs"]
+
+            def ratio(a, b="gjk"):
+                return "%.2f" % (d[a]["mpairs"] / d[b]["mpairs"]) if a in d and b in d else "-"
+
+            def it(a):
+                return "%d" % d[a]["max_it"] if a in d and d[a]["max_it"] is not None else "-"
+
+            def cnt(a, k):
+                return "%d" % d[a][k] if a in d and d[a][k] is not None else "-"
+            out.append("| %s | %g | %.1f %% | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                name, sigma, 100 * d["gjk"]["density"], ratio("dss-double"), ratio("dss-float"), ratio("dss-exact"),
+                ratio("hybrid"), ratio("dss-double", "fcl-box"), it("dss-double"), it("gjk"),
+                "/".join(cnt(a, "caps") for a in ["dss-double", "gjk", "hybrid"]),
+                "/".join(cnt(a, "wrong") for a in ["dss-exact", "dss-double", "dss-float", "gjk", "hybrid"])))
+    out.append("")
+    for title, lines in (("Failure-rate density scan", scan), ("Long failure-rate run", long_run)):
+        if not lines:
+            continue
+        out.append("## %s (float-rounded tetrahedra, cap %d)" % (title, lines[0]["max_iterations_cap"]))
+        out.append("")
+        out.append("Command: `%s`" % lines[0]["command"])
+        out.append("")
+        out.append("| sigma | density | pairs | algo | cap hits | wrong | wrong, decided | max it |")
+        out.append("|---|---|---|---|---|---|---|---|")
+        for ln in lines:
+            for a in ln["algos"]:
+                out.append("| %g | %.1f %% | %.0e | %s | %d | %d | %d | %d |" % (
+                    ln["sigma"], 100 * ln["density"], ln["pairs"], a["algo"], a["cap_hits"], a["wrong"],
+                    a["wrong_decided"], a["max_iterations"]))
+        out.append("")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
     return path
 
 
@@ -411,6 +466,7 @@ def main():
     p.add_argument("--failure-long", help="JSON line(s) of the long dss_bench failure-rate run")
     p.add_argument("--note", default="", help="second footer line (machine, commit, date)")
     p.add_argument("--out", default="docs/figures", help="output folder for the PNGs")
+    p.add_argument("--summary", help="also write the quoted numbers as markdown tables to this file")
     args = p.parse_args()
     os.makedirs(args.out, exist_ok=True)
     made = []
@@ -431,6 +487,9 @@ def main():
         sys.exit("plot_narrowphase: no lines in " + args.failure_long)
     made.append(plot_failure_rate(scan, long_run, args.out, args.note))
     made.append(plot_iteration_histogram(long_run, args.out, args.note))
+    if args.summary:
+        made.append(write_summary(rows if args.data else [], scan, long_run, args.summary,
+                                  args.command or "dss_bench narrowphase"))
     made = [m for m in made if m]
     if not made:
         sys.exit("plot_narrowphase: nothing to draw (give --data and/or --failure-scan/--failure-long)")

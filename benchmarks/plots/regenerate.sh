@@ -67,7 +67,7 @@ if [[ $quick == 1 ]]; then
   fr_args=(--pairs 2e4 --sigmas 1,2,4 --double)
 else
   np_args=(--reps 9 --sweep --sweep-vertices 4,8,12,16,24,32,48,64,96,128,256,512,1024)
-  fr_args=(--pairs 1e7 --sigmas 0.5,1,1.5,2,2.5,3,4,6,10 --double)
+  fr_args=(--pairs 5e6 --sigmas 0.5,1,1.5,2,2.5,3,4,6,10 --double)
 fi
 np_csv="$data/narrowphase.csv"
 np_json="$data/narrowphase.json"
@@ -78,12 +78,12 @@ cd "$root"
 echo "== $np_cmd"
 nice -n 10 "$bench" narrowphase "${np_args[@]}" --csv "$np_csv" --json "$np_json" > "$data/narrowphase.txt"
 echo "== dss_bench failure-rate ${fr_args[*]} --json $(rel "$fr_scan")"
-nice -n 10 "$bench" failure-rate "${fr_args[@]}" --json "$fr_scan" > "$data/failure_rate_scan.txt"
+nice -n 10 "$bench" failure-rate "${fr_args[@]}" --note "$note" --json "$fr_scan" > "$data/failure_rate_scan.txt"
 
 fr_long="$out/failure_rate.json"
 if [[ $long == 1 ]]; then
   echo "== dss_bench failure-rate --pairs 1e8 --sigma 2 --double --json $(rel "$fr_long")  (long)"
-  nice -n 19 "$bench" failure-rate --pairs 1e8 --sigma 2 --double --json "$fr_long" > "$data/failure_rate_long.txt"
+  nice -n 19 "$bench" failure-rate --pairs 1e8 --sigma 2 --double --note "$note" --json "$fr_long" > "$data/failure_rate_long.txt"
 fi
 long_args=()
 if [[ -s "$fr_long" ]]; then
@@ -99,5 +99,5 @@ fi
 } > "$data/commands.txt"
 
 "$python" "$here/plot_narrowphase.py" --data "$np_csv" --command "$np_cmd" \
-  --failure-scan "$fr_scan" "${long_args[@]}" --note "$note" --out "$out"
+  --failure-scan "$fr_scan" "${long_args[@]}" --note "$note" --out "$out" --summary "$data/summary.md"
 echo "figures in $(rel "$out")"
