@@ -39,6 +39,7 @@ struct FailureConfig {
   int max_iterations = 20;
   int batch = 1000;
   bool with_double = false;
+  int dump = 0;
   std::string json;
   std::string note;
   std::string command;
@@ -54,6 +55,8 @@ const char* kFailureUsage =
     "  --double            also run DSS and GJK in double on the same (float-rounded) vertices\n"
     "  --seed S            generator seed (batch k uses seed + k)\n"
     "  --json FILE         write the JSON lines to FILE as well as to stdout\n"
+    "  --dump N            print the first N DSS / Hybrid pairs that hit the cap or are wrong\n"
+    "                      (batch, indices, vertices as hex floats) to stderr\n"
     "  --note TEXT         free text stored in the JSON (build commit, machine load)\n";
 
 FailureConfig parseFailureArgs(int argc, char** argv) {
@@ -96,6 +99,8 @@ FailureConfig parseFailureArgs(int argc, char** argv) {
       c.seed = std::stoull(value());
     } else if (a == "--json") {
       c.json = value();
+    } else if (a == "--dump") {
+      c.dump = std::stoi(value());
     } else if (a == "--note") {
       c.note = value();
     } else {
@@ -152,6 +157,7 @@ int runFailureRate(int argc, char** argv) {
       tallies.push_back(t);
     }
     long long done = 0, intersecting = 0;
+    int dumped = 0;
     double reference_seconds = 0;
     for (std::uint64_t batch = 0; done < cfg.pairs; ++batch) {
       WorkloadSet w = makeWorkload(WorkloadKind::kTetrahedra, sigma, cfg.batch, cfg.seed + batch);
@@ -191,6 +197,18 @@ int runFailureRate(int argc, char** argv) {
                     : gjk ? intersectGjk(hulls[i], hulls[j], opt) : intersectHybrid(hulls[i], hulls[j], opt);
           }
           t.add(r, truth[k]);
+          if (dumped < cfg.dump && !gjk && (r.status == Status::kIterationLimit || r.intersect != truth[k])) {
+            ++dumped;
+            std::fprintf(stderr, "%s: batch %llu pair (%d, %d) sigma %g: answer %d exact %d status %s iterations %d\n",
+                         t.name.c_str(), (unsigned long long)batch, i, j, sigma, int(r.intersect), int(truth[k]),
+                         toString(r.status), r.iterations);
+            for (int side : {i, j}) {
+              std::fprintf(stderr, "  tetrahedron %d:", side);
+              for (const auto& v : w.a_polytopes[side].vertices)
+                std::fprintf(stderr, " (%a, %a, %a)", v.x(), v.y(), v.z());
+              std::fprintf(stderr, "\n");
+            }
+          }
         }
         t.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       }
