@@ -33,6 +33,29 @@ void elementSphere(const CollisionElement& ce, Eigen::Vector3d* c, double* r) {
   *r = shapeMagnitude(ce.shape) * (1.0 + 1e-12) + 1e-12;
 }
 
+// A box holding the shape, axis-aligned in its own frame: centre and half extents, grown by a
+// relative 1e-9 so that rounding of the centre never cuts a point off.
+void localBox(const AnyShape& shape, Eigen::Vector3d* c, Eigen::Vector3d* h) {
+  *c = Eigen::Vector3d::Zero();
+  if (const auto* s = std::get_if<Sphere>(&shape)) *h = Eigen::Vector3d::Constant(s->radius);
+  else if (const auto* b = std::get_if<Box>(&shape)) *h = b->half;
+  else if (const auto* k = std::get_if<Capsule>(&shape)) *h = Eigen::Vector3d(k->radius, k->radius, k->half_length + k->radius);
+  else if (const auto* y = std::get_if<Cylinder>(&shape)) *h = Eigen::Vector3d(y->radius, y->radius, y->half_length);
+  else if (const auto* n = std::get_if<Cone>(&shape)) *h = Eigen::Vector3d(n->radius, n->radius, n->half_length);
+  else if (const auto* e = std::get_if<Ellipsoid>(&shape)) *h = e->radii;
+  else {
+    const auto& hull = std::get<ConvexHull>(shape);
+    Eigen::Vector3d lo = hull.points()[0], hi = lo;
+    for (const auto& p : hull.points()) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    *c = 0.5 * (lo + hi);
+    *h = 0.5 * (hi - lo);
+  }
+  *h += Eigen::Vector3d::Constant(1e-9 * (1.0 + h->maxCoeff() + c->cwiseAbs().maxCoeff()));
+}
+
 }  // namespace
 
 CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
@@ -87,17 +110,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       e.slot = int(slots_.size());
       e.source = &ce;
       elementSphere(ce, &e.center_L, &e.radius);
-      if (const auto* hull = std::get_if<ConvexHull>(&ce.shape)) {
-        Eigen::Vector3d blo = hull->points()[0], bhi = blo;
-        for (const auto& p : hull->points()) {
-          blo = blo.cwiseMin(p);
-          bhi = bhi.cwiseMax(p);
-        }
-        e.has_box = true;
-        e.box_center_S = 0.5 * (blo + bhi);
-        // Grown by a relative 1e-9 so that rounding of the centre never cuts a vertex off.
-        e.box.half = 0.5 * (bhi - blo) + Eigen::Vector3d::Constant(1e-9 * (1.0 + bhi.cwiseAbs().maxCoeff() + blo.cwiseAbs().maxCoeff()));
-      }
+      localBox(ce.shape, &e.box_center_S, &e.box_half);
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);
@@ -153,6 +166,13 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       new_index[o] = int(kept.size());
       kept.push_back(std::move(scene_.obstacles[o]));
       boxes_.push_back(boxes[o]);
+      Obb b;
+      const Obstacle& ob = kept.back();
+      Eigen::Vector3d c_S;
+      localBox(ob.shape, &c_S, &b.h);
+      b.R = ob.X_WO.linear();
+      b.c = ob.X_WO * c_S;
+      obbs_.push_back(b);
     }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {

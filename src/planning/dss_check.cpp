@@ -26,7 +26,7 @@ const char* kUsage =
     "                 (--states FILE.csv | --random N [--seed S])\n"
     "                 [--checker dss|fcl-hull|fcl-mesh[,...]] [--padding r] [--self-padding r]\n"
     "                 [--repeat K] [--describe]\n"
-    "                 [--mode exact|double|float] [--algorithm dss|gjk|hybrid]\n";
+    "                 [--mode exact|double|float] [--algorithm dss|gjk|hybrid] [--no-obb-stage]\n";
 
 struct Csv {
   std::vector<std::string> names;
@@ -146,6 +146,7 @@ int run(int argc, char** argv) {
   int repeat = 0;
   bool do_describe = false;
   std::string mode = "exact", algorithm = "dss";
+  bool box_stage = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -165,6 +166,7 @@ int run(int argc, char** argv) {
     else if (a == "--repeat") repeat = std::stoi(value());
     else if (a == "--describe") do_describe = true;
     else if (a == "--mode") mode = value();
+    else if (a == "--no-obb-stage") box_stage = false;
     else if (a == "--algorithm") algorithm = value();
     else if (a == "-h" || a == "--help") {
       std::cout << kUsage;
@@ -240,6 +242,7 @@ int run(int argc, char** argv) {
     else if (mode == "double") cfg.dss_options.mode = dss::Mode::kDouble;
     else if (mode == "float") cfg.dss_options.mode = dss::Mode::kFloat;
     else throw std::invalid_argument("--mode must be exact, double or float");
+    cfg.obb_stage = box_stage;
     if (algorithm == "dss") cfg.algorithm = dss::Algorithm::kDss;
     else if (algorithm == "gjk") cfg.algorithm = dss::Algorithm::kGjk;
     else if (algorithm == "hybrid") cfg.algorithm = dss::Algorithm::kHybrid;

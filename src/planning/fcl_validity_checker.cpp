@@ -133,7 +133,8 @@ bool FclValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
       [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
         ++tests;
         return pair(elements_[a].get(), X_WA, elements_[b].get(), X_WB, self_padding_);
-      });
+      },
+      obb_stage_);
   pair_tests_.fetch_add(tests, std::memory_order_relaxed);
   return hit;
 }

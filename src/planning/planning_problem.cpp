@@ -58,16 +58,18 @@ std::shared_ptr<ModelValidityChecker> makeChecker(const Problem& p, const Checke
     DssCheckerSettings s;
     s.options = c.dss_options;
     s.algorithm = c.algorithm;
+    s.obb_stage = c.obb_stage;
     s.scene_padding = c.scene_padding;
     s.self_padding = c.self_padding;
     return std::make_shared<DssValidityChecker>(p.si, p.model, p.map, s);
   }
-  if (c.checker == "fcl-hull")
-    return std::make_shared<FclValidityChecker>(p.si, p.model, p.map, FclGeometry::kHull, c.scene_padding,
-                                                c.self_padding);
-  if (c.checker == "fcl-mesh")
-    return std::make_shared<FclValidityChecker>(p.si, p.model, p.map, FclGeometry::kMesh, c.scene_padding,
-                                                c.self_padding);
+  if (c.checker == "fcl-hull" || c.checker == "fcl-mesh") {
+    auto f = std::make_shared<FclValidityChecker>(
+        p.si, p.model, p.map, c.checker == "fcl-hull" ? FclGeometry::kHull : FclGeometry::kMesh,
+        c.scene_padding, c.self_padding);
+    f->setObbStage(c.obb_stage);
+    return f;
+  }
   throw std::invalid_argument("unknown checker '" + c.checker + "' (expected dss, fcl-hull or fcl-mesh)");
 }
 

@@ -83,7 +83,9 @@ DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si
                                        std::shared_ptr<const GroupStateMap> map, const Settings& settings)
     : ModelValidityChecker(si, std::move(model), std::move(map), settings.scene_padding,
                            settings.self_padding),
-      settings_(settings) {}
+      settings_(settings) {
+  obb_stage_ = settings.obb_stage;
+}
 
 bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
   const CollisionModel& m = *model_;
@@ -96,47 +98,18 @@ bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
     if (r.status == Status::kIterationLimit) cap = true;
     return r.intersect;
   };
-  const bool boxes = settings_.box_stage;
   const bool hit = m.anyCollision(
       X_WL, scene_padding_, self_padding_,
       [&](int e, const Eigen::Isometry3d& X_WS, int o) {
         const Obstacle& ob = obstacles[o];
-        const CollisionModel::Element& el = elements[e];
-        const bool ob_hull = m.obstacleIsHull(o);
-        if (boxes && (el.has_box || ob_hull)) {
-          // First stage: boxes for the hulls, the shape itself for a primitive.
-          Eigen::Isometry3d X_A = X_WS, X_B = ob.X_WO;
-          Box ba, bb;
-          if (el.has_box) X_A.translation() += X_WS.linear() * el.box_center_S, ba = el.box;
-          if (ob_hull) {
-            const Aabb& w = m.obstacleBoxes()[o];
-            X_B = Eigen::Isometry3d::Identity();
-            X_B.translation() = w.center();
-            bb.half = 0.5 * (w.upper - w.lower);
-          }
-          Result r0;
-          if (el.has_box && ob_hull) r0 = intersect(AnyShape(ba), X_A, AnyShape(bb), X_B, settings_.options, scene_padding_, settings_.algorithm);
-          else if (el.has_box) r0 = intersect(AnyShape(ba), X_A, ob.shape, X_B, settings_.options, scene_padding_, settings_.algorithm);
-          else r0 = intersect(el.source->shape, X_A, AnyShape(bb), X_B, settings_.options, scene_padding_, settings_.algorithm);
-          if (!r0.intersect) return false;
-        }
         return decideResult(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO,
                                       settings_.options, scene_padding_, settings_.algorithm));
       },
       [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
-        const CollisionModel::Element& ea = elements[a];
-        const CollisionModel::Element& eb = elements[b];
-        if (boxes && ea.has_box && eb.has_box) {
-          Eigen::Isometry3d X_A = X_WA, X_B = X_WB;
-          X_A.translation() += X_WA.linear() * ea.box_center_S;
-          X_B.translation() += X_WB.linear() * eb.box_center_S;
-          if (!intersect(AnyShape(ea.box), X_A, AnyShape(eb.box), X_B, settings_.options, self_padding_,
-                         settings_.algorithm).intersect)
-            return false;
-        }
         return decideResult(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
                                       settings_.options, self_padding_, settings_.algorithm));
-      });
+      },
+      obb_stage_);
   pair_tests_.fetch_add(tests, std::memory_order_relaxed);
   if (cap) cap_hits_.fetch_add(1, std::memory_order_relaxed);
   return hit;

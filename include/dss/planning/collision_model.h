@@ -18,6 +18,7 @@
 // narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,11 +51,10 @@ class CollisionModel {
     const CollisionElement* source = nullptr;  ///< in robot()
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
     double radius = 0.0;
-    /// For hull elements: a box holding the hull, in the shape frame (axis-aligned there,
-    /// centred at box_center_S); a cheap conservative stage before the hull test.
-    bool has_box = false;
-    Box box;
+    /// A box holding the element, axis-aligned in the shape frame, centred at box_center_S
+    /// (half extents box_half): the oriented-box stage of the sweep.
     Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
+    Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
   };
   /// A link with geometry.
   struct Slot {
@@ -91,8 +91,13 @@ class CollisionModel {
   const std::vector<Slot>& slots() const { return slots_; }
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
-  /// Obstacles that are hulls (their world box is then used as a first stage).
-  bool obstacleIsHull(int o) const { return std::holds_alternative<ConvexHull>(scene_.obstacles[o].shape); }
+  /// Oriented box of obstacle o in the world: rotation, centre, half extents.
+  struct Obb {
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  };
+  const std::vector<Obb>& obstacleObbs() const { return obbs_; }
   const SelfCollisionPairs& selfPairReport() const { return self_report_; }
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 
@@ -108,9 +113,11 @@ class CollisionModel {
   ///   scene(element, X_WS, obstacle) -> bool collides
   ///   self(element_a, X_WA, element_b, X_WB) -> bool collides
   /// X_WL: link poses from kinematics().computeLinkPoses for the state.
+  /// With `obb_stage`, element pairs whose oriented boxes a separating-axis test (with a
+  /// relative safety margin against rounding) proves apart are skipped too.
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
-                    SceneNarrow&& scene, SelfNarrow&& self) const;
+                    SceneNarrow&& scene, SelfNarrow&& self, bool obb_stage = true) const;
 
  private:
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
@@ -125,6 +132,7 @@ class CollisionModel {
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
   std::vector<Aabb> boxes_;
+  std::vector<Obb> obbs_;
   SelfCollisionPairs self_report_;
   std::size_t obstacles_before_ = 0;
   std::size_t scene_pairs_ = 0;
@@ -132,6 +140,33 @@ class CollisionModel {
 };
 
 namespace detail {
+/// Separating-axis test of two oriented boxes (rotation, centre, half extents): true when one
+/// of the 15 axes separates them by more than `pad` plus a relative margin that covers the
+/// rounding of the test, so "true" is a safe "disjoint (distance > pad)".
+inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const Eigen::Vector3d& ha,
+                     const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb, const Eigen::Vector3d& hb,
+                     double pad) {
+  const Eigen::Matrix3d R = Ra.transpose() * Rb;
+  const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
+  const double margin = pad + 1e-9 * (ha.sum() + hb.sum() + t.cwiseAbs().sum()) + 1e-12;
+  Eigen::Matrix3d A = R.cwiseAbs();
+  A.array() += 1e-12;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(t[i]) > ha[i] + hb.dot(A.row(i)) + margin) return true;
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(t.dot(R.col(j))) > ha.dot(A.col(j)) + hb[j] + margin) return true;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ha[i1] * A(i2, j) + ha[i2] * A(i1, j);
+      const double rb = hb[j1] * A(i, j2) + hb[j2] * A(i, j1);
+      if (std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) > ra + rb + margin) return true;
+    }
+  }
+  return false;
+}
+
 inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
   const Eigen::Vector3d d = (b.lower - p).cwiseMax(p - b.upper).cwiseMax(0.0);
   return d.squaredNorm();
@@ -140,7 +175,8 @@ inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
 
 template <class SceneNarrow, class SelfNarrow>
 bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding,
-                                  double self_padding, SceneNarrow&& scene, SelfNarrow&& self) const {
+                                  double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
+                                  bool obb_stage) const {
   // Robot vs scene.
   for (const Slot& s : slots_) {
     if (s.obstacles.empty()) continue;
@@ -157,6 +193,12 @@ bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_pa
           if (detail::sqDistPointAabb(X * el.center_L, box) > re * re) continue;
         }
         const Eigen::Isometry3d X_WS = X * el.source->X_LS;
+        if (obb_stage) {
+          const Obb& ob = obbs_[o];
+          if (detail::obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
+                               scene_padding))
+            continue;
+        }
         if (scene(e, X_WS, o)) return true;
       }
     }
@@ -176,7 +218,12 @@ bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_pa
         const Element& b = elements_[eb];
         const double rr = a.radius + b.radius + self_padding;
         if ((ca - XB * b.center_L).squaredNorm() > rr * rr) continue;
-        if (self(ea, XA * a.source->X_LS, eb, XB * b.source->X_LS)) return true;
+        const Eigen::Isometry3d X_WA = XA * a.source->X_LS;
+        const Eigen::Isometry3d X_WB = XB * b.source->X_LS;
+        if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
+                                          X_WB * b.box_center_S, b.box_half, self_padding))
+          continue;
+        if (self(ea, X_WA, eb, X_WB)) return true;
       }
     }
   }

@@ -36,6 +36,7 @@ struct CheckerConfig {
   double self_padding = 0.0;
   Options dss_options;
   Algorithm algorithm = Algorithm::kDss;
+  bool obb_stage = true;  ///< oriented-box stage (both checkers)
 };
 
 struct Problem {

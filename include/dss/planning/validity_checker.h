@@ -48,6 +48,7 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
   void resetCounters();
   const CollisionModel& model() const { return *model_; }
   const GroupStateMap& stateMap() const { return *map_; }
+  void setObbStage(bool on) { obb_stage_ = on; }
 
  protected:
   virtual bool collides(const Eigen::Isometry3d* X_WL) const = 0;
@@ -56,6 +57,7 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
   std::shared_ptr<const GroupStateMap> map_;
   double scene_padding_ = 0.0;
   double self_padding_ = 0.0;
+  bool obb_stage_ = true;
   mutable std::atomic<std::uint64_t> checks_{0}, invalid_input_{0}, collisions_{0}, pair_tests_{0},
       cap_hits_{0};
 };
@@ -65,9 +67,8 @@ struct DssCheckerSettings {
   Algorithm algorithm = Algorithm::kDss;
   double scene_padding = 0.0;  ///< "valid" means distance > padding to every obstacle
   double self_padding = 0.0;
-  /// Test a box around each hull (and the world box of hull obstacles) before the hull
-  /// itself: a disjoint box pair is a certified disjoint hull pair.
-  bool box_stage = true;
+  /// Oriented-box separating-axis stage of the shared sweep (CollisionModel::anyCollision).
+  bool obb_stage = true;
 };
 
 class DssValidityChecker : public ModelValidityChecker {
