@@ -171,6 +171,9 @@ def plot_workload(rows, name, title, out, command, note):
     ax_fail.set_ylabel("fraction of pairs (symlog; linear below %.1g)" % linthresh)
     ax_fail.set_title("failure rate: cap hits (solid), wrong answers (dotted, if any)")
     ax_fail.legend(fontsize=7, ncol=2)
+    if not any((r["caps"] or 0) > 0 or r["wrong"] > 0 for r in rows):
+        ax_fail.text(0.5, 0.5, "no cap hits and no wrong answers in this run\n(see failure_rate.png for float at cap 20)",
+                     transform=ax_fail.transAxes, ha="center", fontsize=10, color="gray")
 
     extra = ""
     if zero:
