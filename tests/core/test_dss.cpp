@@ -141,9 +141,20 @@ BOOST_AUTO_TEST_CASE(scales_and_offsets) {
         const double s = scale / (1 << 12);
         const ConvexHull ha = toHull(a, s, off), hb = toHull(b, s, off);
         const Result r = intersect(ha, hb);
+        // Every mode and algorithm terminates within the cap and, on these pairs (gaps of at
+        // least 2^-12 of the size), is right.
+        Options od;
+        od.mode = Mode::kDouble;
+        const Result rd = intersect(ha, hb, od), rh = intersectHybrid(ha, hb, od);
+        BOOST_TEST(rd.iterations <= od.max_iterations);
+        BOOST_TEST(rh.iterations <= od.max_iterations);
         const bool exact_inputs = (scale == 0x1p-20 || scale == 1.0 || scale == 0x1p20) &&
                                   (offset == 0.0 || offset == 0x1p20);
-        if (exact_inputs) exact.add(r, truth);
+        if (exact_inputs) {
+          exact.add(r, truth);
+          exact.add(rd, truth);
+          exact.add(rh, truth);
+        }
       }
       BOOST_TEST(exact.wrong == 0, "scale " << scale << " offset " << offset);
     }
