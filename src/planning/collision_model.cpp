@@ -61,7 +61,7 @@ void localBox(const AnyShape& shape, Eigen::Vector3d* c, Eigen::Vector3d* h) {
 CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
                                std::vector<int> group_active, std::vector<double> held,
                                const CollisionModelOptions& options)
-    : robot_(std::move(robot)), kin_(*robot_, /*all_links=*/true), scene_(std::move(scene)),
+    : robot_(std::move(robot)), kin_(*robot_, /*all_links=*/false), scene_(std::move(scene)),
       group_active_(std::move(group_active)), held_(std::move(held)) {
   const RobotModel& m = *robot_;
   if (held_.size() != m.numActiveJoints())
@@ -86,7 +86,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   }
 
   // Link poses at the held state: frames for the scene, pivots for the reach balls.
-  const std::vector<Eigen::Isometry3d> X_WL = kin_.linkPoses(held_);
+  const std::vector<Eigen::Isometry3d> X_WL = Kinematics(m, /*all_links=*/true).linkPoses(held_);
   FrameMap frames;
   for (std::size_t l = 0; l < m.links.size(); ++l)
     if (!moves_[l]) frames[m.links[l].name] = X_WL[l];

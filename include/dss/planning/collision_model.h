@@ -83,6 +83,7 @@ class CollisionModel {
                  const CollisionModelOptions& options = {});
 
   const RobotModel& robot() const { return *robot_; }
+  /// Computes the poses of the links with geometry (others are left untouched).
   const Kinematics& kinematics() const { return kin_; }
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
   const std::vector<int>& groupActive() const { return group_active_; }
