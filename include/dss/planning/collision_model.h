@@ -178,11 +178,17 @@ template <class SceneNarrow, class SelfNarrow>
 bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding,
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
                                   bool obb_stage) const {
+  // World centres of the slot spheres, once per state (per-thread scratch, no allocation
+  // after the first call with a model this size).
+  thread_local std::vector<Eigen::Vector3d> centers;
+  if (centers.size() < slots_.size()) centers.resize(slots_.size());
+  for (std::size_t k = 0; k < slots_.size(); ++k) centers[k] = X_WL[slots_[k].link] * slots_[k].center_L;
   // Robot vs scene.
-  for (const Slot& s : slots_) {
+  for (std::size_t k = 0; k < slots_.size(); ++k) {
+    const Slot& s = slots_[k];
     if (s.obstacles.empty()) continue;
     const Eigen::Isometry3d& X = X_WL[s.link];
-    const Eigen::Vector3d c = X * s.center_L;
+    const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     for (int o : s.obstacles) {
       const Aabb& box = boxes_[o];
@@ -208,18 +214,20 @@ bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_pa
   for (const SelfPair& p : self_pairs_) {
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
+    const double r = sa.radius + sb.radius + self_padding;
+    if ((centers[p.a] - centers[p.b]).squaredNorm() > r * r) continue;
     const Eigen::Isometry3d& XA = X_WL[sa.link];
     const Eigen::Isometry3d& XB = X_WL[sb.link];
-    const double r = sa.radius + sb.radius + self_padding;
-    if ((XA * sa.center_L - XB * sb.center_L).squaredNorm() > r * r) continue;
+    const bool single = sa.num_elements == 1 && sb.num_elements == 1;
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
       const Element& a = elements_[ea];
-      const Eigen::Vector3d ca = XA * a.center_L;
+      const Eigen::Isometry3d X_WA = XA * a.source->X_LS;
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
         const Element& b = elements_[eb];
-        const double rr = a.radius + b.radius + self_padding;
-        if ((ca - XB * b.center_L).squaredNorm() > rr * rr) continue;
-        const Eigen::Isometry3d X_WA = XA * a.source->X_LS;
+        if (!single) {
+          const double rr = a.radius + b.radius + self_padding;
+          if ((XA * a.center_L - XB * b.center_L).squaredNorm() > rr * rr) continue;
+        }
         const Eigen::Isometry3d X_WB = XB * b.source->X_LS;
         if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                                           X_WB * b.box_center_S, b.box_half, self_padding))
