@@ -33,11 +33,6 @@ const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
 const std::string kPanda = std::string(DSS_SHARED_DIR) + "/robots/panda";
 const std::string kMbm = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda";
 
-bool haveShared() {
-  if (fs::exists(kPanda + "/panda.urdf") && fs::exists(kMbm)) return true;
-  BOOST_TEST_MESSAGE("shared Panda scenes absent (" << kMbm << "): skipped");
-  return false;
-}
 
 dss::Problem shelfProblem(const dss::LoadedRobot& r) {
   const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
@@ -167,14 +162,18 @@ BOOST_AUTO_TEST_CASE(two_threads_give_the_same_answers) {
   for (auto* s : states) p.si->freeState(s);
 }
 
-BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states) {
-  if (!haveShared()) return;
-  const auto r = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
+namespace {
+void compareOnMbm(const std::string& robot_dir, const std::string& robot, const std::string& mbm) {
+  if (!fs::exists(robot_dir + "/" + robot + ".urdf") || !fs::exists(mbm)) {
+    BOOST_TEST_MESSAGE(mbm << " or " << robot_dir << " absent: skipped");
+    return;
+  }
+  const auto r = dss::loadRobot(robot_dir + "/" + robot + ".urdf", robot_dir + "/" + robot + ".srdf");
   double max_band = 0.0;
   std::size_t total = 0, hull_disagree = 0, mesh_free_dss_collide = 0, dss_free_mesh_collide = 0;
   double min_gap = std::numeric_limits<double>::infinity();
   for (const char* folder : {"box", "bookshelf_small", "cage", "table_pick"}) {
-    const std::string dir = kMbm + "/" + folder;
+    const std::string dir = mbm + "/" + folder;
     if (!fs::exists(dir + "/scene0001.yaml")) continue;
     const auto req = dss::loadPlanRequestYaml(dir + "/request0001.yaml");
     dss::Problem p = dss::makeProblem(r, dss::loadScene(dir + "/scene0001.yaml"), req.group_name, req.startState());
@@ -229,11 +228,21 @@ BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states) {
     BOOST_TEST_MESSAGE(folder << ": " << valid << " of " << states.size() << " valid under dss; " << m.summary());
     for (auto* s : states) p.si->freeState(s);
   }
-  std::cout << "planning tests: " << total << " random Panda states; dss vs fcl-hull disagree on "
+  std::cout << "planning tests: " << total << " random " << robot << " states; dss vs fcl-hull disagree on "
             << hull_disagree << " (max fcl distance among them " << max_band << " m); dss free where "
             << "fcl-mesh collides: " << dss_free_mesh_collide << " (smallest DSS gap " << min_gap
             << " m); dss colliding where fcl-mesh free (hull vs mesh): " << mesh_free_dss_collide << "\n";
   // Near-contact band: disagreements only where the shapes are within 1 mm.
   BOOST_TEST(max_band < 1e-3);
   BOOST_TEST(hull_disagree * 100 <= total);
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states) {
+  compareOnMbm(kPanda, "panda", kMbm);
+}
+
+BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_ur5_random_states) {
+  compareOnMbm(std::string(DSS_SHARED_DIR) + "/robots/ur5_robotiq85", "ur5",
+               std::string(DSS_SHARED_DIR) + "/scenes/mbm_ur5");
 }
