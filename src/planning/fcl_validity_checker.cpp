@@ -135,7 +135,7 @@ bool FclValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
         return pair(elements_[a].get(), X_WA, elements_[b].get(), X_WB, self_padding_);
       },
       obb_stage_);
-  pair_tests_.fetch_add(tests, std::memory_order_relaxed);
+  slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   return hit;
 }
 

@@ -33,49 +33,59 @@ ModelValidityChecker::ModelValidityChecker(const ompl::base::SpaceInformationPtr
 }
 
 bool ModelValidityChecker::isValid(const ompl::base::State* state) const {
-  checks_.fetch_add(1, std::memory_order_relaxed);
+  slot().checks.fetch_add(1, std::memory_order_relaxed);
   Scratch& s = scratch();
   s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
   if (!map_->toJoints(state, s.q.data())) {
-    invalid_input_.fetch_add(1, std::memory_order_relaxed);
+    slot().invalid_input.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
   model_->kinematics().computeLinkPoses(s.q.data(), s.X_WL.data());
   if (collides(s.X_WL.data())) {
-    collisions_.fetch_add(1, std::memory_order_relaxed);
+    slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
   return true;
 }
 
 bool ModelValidityChecker::isValidJoints(const double* q) const {
-  checks_.fetch_add(1, std::memory_order_relaxed);
+  slot().checks.fetch_add(1, std::memory_order_relaxed);
   Scratch& s = scratch();
   s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
   model_->kinematics().computeLinkPoses(q, s.X_WL.data());
   if (collides(s.X_WL.data())) {
-    collisions_.fetch_add(1, std::memory_order_relaxed);
+    slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
   return true;
 }
 
+ModelValidityChecker::CounterSlot& ModelValidityChecker::slot() const {
+  static std::atomic<int> next{0};
+  thread_local const int index = next.fetch_add(1, std::memory_order_relaxed) % kCounterSlots;
+  return slots_[index];
+}
+
 CheckerCounters ModelValidityChecker::counters() const {
   CheckerCounters c;
-  c.checks = checks_.load();
-  c.invalid_input = invalid_input_.load();
-  c.collisions = collisions_.load();
-  c.pair_tests = pair_tests_.load();
-  c.cap_hits = cap_hits_.load();
+  for (const auto& s : slots_) {
+    c.checks += s.checks.load();
+    c.invalid_input += s.invalid_input.load();
+    c.collisions += s.collisions.load();
+    c.pair_tests += s.pair_tests.load();
+    c.cap_hits += s.cap_hits.load();
+  }
   return c;
 }
 
 void ModelValidityChecker::resetCounters() {
-  checks_ = 0;
-  invalid_input_ = 0;
-  collisions_ = 0;
-  pair_tests_ = 0;
-  cap_hits_ = 0;
+  for (auto& s : slots_) {
+    s.checks = 0;
+    s.invalid_input = 0;
+    s.collisions = 0;
+    s.pair_tests = 0;
+    s.cap_hits = 0;
+  }
 }
 
 DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si,
@@ -110,8 +120,8 @@ bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
                                       settings_.options, self_padding_, settings_.algorithm));
       },
       obb_stage_);
-  pair_tests_.fetch_add(tests, std::memory_order_relaxed);
-  if (cap) cap_hits_.fetch_add(1, std::memory_order_relaxed);
+  slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
+  if (cap) slot().cap_hits.fetch_add(1, std::memory_order_relaxed);
   return hit;
 }
 

@@ -58,8 +58,14 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
   double scene_padding_ = 0.0;
   double self_padding_ = 0.0;
   bool obb_stage_ = true;
-  mutable std::atomic<std::uint64_t> checks_{0}, invalid_input_{0}, collisions_{0}, pair_tests_{0},
-      cap_hits_{0};
+  // Counters live in per-thread slots (one cache line each, a thread's slot chosen once), so
+  // that threads checking in parallel never write to the same line; counters() sums them.
+  struct alignas(64) CounterSlot {
+    std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0}, cap_hits{0};
+  };
+  static constexpr int kCounterSlots = 16;
+  mutable CounterSlot slots_[kCounterSlots];
+  CounterSlot& slot() const;
 };
 
 struct DssCheckerSettings {
