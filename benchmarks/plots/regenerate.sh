@@ -74,16 +74,16 @@ np_json="$data/narrowphase.json"
 fr_scan="$data/failure_rate_scan.jsonl"
 np_cmd="dss_bench narrowphase ${np_args[*]} --csv $(rel "$np_csv") --json $(rel "$np_json")"
 
-cd "$root"
+cd "$root"  # relative paths from here on, so that the commands recorded in the data are portable
 echo "== $np_cmd"
-nice -n 10 "$bench" narrowphase "${np_args[@]}" --csv "$np_csv" --json "$np_json" > "$data/narrowphase.txt"
+nice -n 10 "$bench" narrowphase "${np_args[@]}" --csv "$(rel "$np_csv")" --json "$(rel "$np_json")" > "$data/narrowphase.txt"
 echo "== dss_bench failure-rate ${fr_args[*]} --json $(rel "$fr_scan")"
-nice -n 10 "$bench" failure-rate "${fr_args[@]}" --note "$note" --json "$fr_scan" > "$data/failure_rate_scan.txt"
+nice -n 10 "$bench" failure-rate "${fr_args[@]}" --note "$note" --json "$(rel "$fr_scan")" > "$data/failure_rate_scan.txt"
 
 fr_long="$out/failure_rate.json"
 if [[ $long == 1 ]]; then
   echo "== dss_bench failure-rate --pairs 1e8 --sigma 2 --double --json $(rel "$fr_long")  (long)"
-  nice -n 19 "$bench" failure-rate --pairs 1e8 --sigma 2 --double --note "$note" --json "$fr_long" > "$data/failure_rate_long.txt"
+  nice -n 19 "$bench" failure-rate --pairs 1e8 --sigma 2 --double --note "$note" --json "$(rel "$fr_long")" > "$data/failure_rate_long.txt"
 fi
 long_args=()
 if [[ -s "$fr_long" ]]; then
