@@ -316,6 +316,9 @@ def load_jsonl(path):
     return out
 
 
+NO_NOTE = "(the run recorded no build note; see docs/figures/README.md for its commit and machine load)"
+
+
 def plot_failure_rate(scan, long_run, out, note):
     lines = scan + long_run
     if not lines:
@@ -353,7 +356,7 @@ def plot_failure_rate(scan, long_run, out, note):
         for ln in long_run:
             text = "long run, sigma %g, density %.1f %%, %.0e pairs:\n" % (ln["sigma"], 100 * ln["density"], ln["pairs"])
             text += "\n".join("  %s: %d (%.2g)" % (a["algo"], a[key], a[key] / ln["pairs"]) for a in ln["algos"])
-            ax.text(0.02, 0.98, text, transform=ax.transAxes, fontsize=7, family="monospace", va="top",
+            ax.text(0.02, 0.62, text, transform=ax.transAxes, fontsize=7, family="monospace", va="top",
                     bbox=dict(boxstyle="round", fc="white", alpha=0.85))
         ax.set_yscale("log")
         density_axis(ax)
@@ -370,8 +373,8 @@ def plot_failure_rate(scan, long_run, out, note):
     cmds = []
     for ln in (scan[:1] + long_run[:1]):
         cmds.append(ln["command"])
-    notes = [ln["note"] for ln in (scan[:1] + long_run[:1]) if ln.get("note")]
-    footer(fig, "  |  ".join(cmds), "  |  ".join(notes) or note)
+    notes = [ln.get("note") or NO_NOTE for ln in (scan[:1] + long_run[:1])]
+    footer(fig, "  |  ".join(cmds), "  |  ".join(notes))
     fig.tight_layout(rect=(0, 0.07, 1, 0.95))
     path = os.path.join(out, "failure_rate.png")
     fig.savefig(path, dpi=100)
@@ -400,7 +403,7 @@ def plot_iteration_histogram(long_run, out, note):
     ax.legend(fontsize=8)
     ax.set_title("Plane tests per pair, random tetrahedra at %.1f %% density, %.0e pairs, cap %d" %
                  (100 * ln["density"], ln["pairs"], ln["max_iterations_cap"]))
-    footer(fig, ln["command"], ln.get("note") or note)
+    footer(fig, ln["command"], ln.get("note") or NO_NOTE)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
     path = os.path.join(out, "failure_rate_iterations.png")
     fig.savefig(path, dpi=100)
