@@ -363,7 +363,7 @@ def plot_failure_rate(scan, long_run, out, note):
         ax.set_ylabel("fraction of pairs (log scale)")
         ax.set_title(what)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7, loc="lower right")
+            ax.legend(fontsize=7, loc="lower left")
     cap = lines[0]["max_iterations_cap"]
     desc = ("Failure rate on random tetrahedra (float-rounded vertices), cap %d plane tests; "
             "lines: density scan, stars: long run" % cap)
