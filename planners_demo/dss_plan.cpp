@@ -41,6 +41,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/scene_loader.h"
 
@@ -174,6 +175,12 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   }
   if (req.goals.empty()) throw std::runtime_error(files.request + ": no goal constraints");
   ss.setGoal(goal);
+  std::shared_ptr<dss::ContinuousMotionValidator> cmv;
+  if (a.motion == "continuous") {
+    cmv = std::make_shared<dss::ContinuousMotionValidator>(
+        p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checker));
+    p.si->setMotionValidator(cmv);
+  }
   ss.setup();
   const bool start_valid = checker->isValid(s0.get());
   const bool goal_valid = checker->isValid(goal->getState(0));
@@ -224,6 +231,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["planner"] = a.planner;
   j["motion"] = a.motion;
   j["cap_hits"] = counters.cap_hits;
+  if (cmv) j["sub_motions"] = cmv->subMotions();
   if (!start_valid) j["start_invalid"] = true;
   if (!goal_valid) j["goal_invalid"] = true;
   std::cout << j.dump() << std::endl;
@@ -292,13 +300,14 @@ int run(int argc, char** argv) {
   }
   if (planners().find(a.planner) == planners().end())
     throw std::invalid_argument("unknown planner '" + a.planner + "'\n" + kUsage);
-  if (a.motion == "continuous")
-    throw std::invalid_argument("--motion continuous is not implemented yet (use discrete)");
-  if (a.motion != "discrete") throw std::invalid_argument("--motion must be discrete or continuous");
+  if (a.motion == "continuous" && a.checker != "dss")
+    throw std::invalid_argument("--motion continuous needs --checker dss");
+  if (a.motion != "discrete" && a.motion != "continuous") throw std::invalid_argument("--motion must be discrete or continuous");
   if (a.checker != "dss" && a.checker != "fcl-hull" && a.checker != "fcl-mesh")
     throw std::invalid_argument("unknown checker '" + a.checker + "' (dss, fcl-hull, fcl-mesh)");
 
   std::vector<ProblemFiles> problems;
+  if (a.robot.empty() && a.request.empty() && a.problems.empty()) a.demo = true;  // options only
   if (a.demo && a.robot.empty()) {
     const std::string root = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
     a.robot = root + "/dss_arm7.urdf";

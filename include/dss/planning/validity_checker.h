@@ -84,6 +84,7 @@ class DssValidityChecker : public ModelValidityChecker {
                      std::shared_ptr<const CollisionModel> model,
                      std::shared_ptr<const GroupStateMap> map, const Settings& settings = {});
   std::string name() const override { return "dss"; }
+  const Settings& settings() const { return settings_; }
 
  protected:
   bool collides(const Eigen::Isometry3d* X_WL) const override;
