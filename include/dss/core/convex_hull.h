@@ -63,18 +63,18 @@ class ConvexHullT {
   }
   int scan(const Vec3<T>& d) const {
     // Coordinates are also kept as separate arrays: this loop is the hottest of the library.
-    const std::size_t n = points_.size();
+    const int n = n_;
     const T* x = soa_.data();
     const T* y = x + n;
     const T* z = y + n;
     const T dx = d.x(), dy = d.y(), dz = d.z();
     int best = 0;
     T best_value = x[0] * dx + y[0] * dy + z[0] * dz;
-    for (std::size_t i = 1; i < n; ++i) {
+    for (int i = 1; i < n; ++i) {
       const T v = x[i] * dx + y[i] * dy + z[i] * dz;
       if (v > best_value) {
         best_value = v;
-        best = static_cast<int>(i);
+        best = i;
       }
     }
     return best;
@@ -113,6 +113,7 @@ class ConvexHullT {
     }
     center_ = sum / T(points_.size());
     const std::size_t n = points_.size();
+    n_ = static_cast<int>(n);
     soa_.resize(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
       soa_[i] = points_[i].x();
@@ -156,6 +157,7 @@ class ConvexHullT {
 
   std::vector<Vec3<T>> points_;
   std::vector<T> soa_;          // x..., y..., z... of points_
+  int n_ = 0;
   std::vector<int> offsets_;    // CSR adjacency (empty: linear scan only)
   std::vector<int> adjacency_;
   Vec3<T> center_ = Vec3<T>::Zero();
