@@ -58,6 +58,7 @@ const char* kUsage =
     "  options: --planner NAME (RRTConnect) --checker dss|fcl-hull|fcl-mesh (dss)\n"
     "           --motion discrete|continuous (discrete) --time SECONDS (10) --seed N (1)\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
+    "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --path FILE (CSV of the solution; with several problems FILE.<problem>.csv)\n"
     "  planners: RRTConnect RRT RRTstar LazyRRT BiTRRT pRRT PRM PRMstar LazyPRM KPIECE1\n"
     "            BKPIECE1 LBKPIECE1 EST SBL pSBL\n";
@@ -113,6 +114,7 @@ double threadCpuSeconds() {
 struct Args {
   std::string robot, srdf, scene, request, problems, planner = "RRTConnect", checker = "dss",
                                                      motion = "discrete", path;
+  double min_fraction = 1.0 / 1024.0;
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;
   bool simplify = false;
@@ -178,7 +180,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   std::shared_ptr<dss::ContinuousMotionValidator> cmv;
   if (a.motion == "continuous") {
     cmv = std::make_shared<dss::ContinuousMotionValidator>(
-        p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checker));
+        p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checker), a.min_fraction);
     p.si->setMotionValidator(cmv);
   }
   ss.setup();
@@ -292,6 +294,7 @@ int run(int argc, char** argv) {
     else if (s == "--resolution") a.resolution = std::stod(value());
     else if (s == "--path") a.path = value();
     else if (s == "--simplify") a.simplify = true;
+    else if (s == "--motion-min-fraction") a.min_fraction = std::stod(value());
     else if (s == "--demo") a.demo = true;
     else if (s == "-h" || s == "--help") {
       std::cout << kUsage;

@@ -209,13 +209,14 @@ void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
         if (j.active_index >= 0) travel = std::abs(held_[j.active_index]);
         if (j.limits.has_position_limits) travel = std::max({travel, std::abs(j.limits.lower), std::abs(j.limits.upper)});
         else if (moves_[j.child_link]) travel = inf;
-        // Mimic prismatic joints: scale by the multiplier of their leader's range.
+        // Mimic prismatic joints: the leader's range and held value through the multiplier.
         if (j.mimic_active >= 0) {
           const RobotJoint& lead = m.joints[m.active_joints[j.mimic_active]];
           const double lr = lead.limits.has_position_limits
                                 ? std::max(std::abs(lead.limits.lower), std::abs(lead.limits.upper))
                                 : inf;
-          travel = std::max(travel, std::abs(j.mimic_multiplier) * lr + std::abs(j.mimic_offset));
+          travel = std::max({travel, std::abs(j.mimic_multiplier) * lr + std::abs(j.mimic_offset),
+                             std::abs(j.mimic_multiplier * held_[j.mimic_active] + j.mimic_offset)});
         }
         r += travel;
       }

@@ -78,10 +78,17 @@ ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInfo
         active = j.mimic_active;
         mult = j.mimic_multiplier;
       }
+      // Largest |displacement| of a prismatic joint: its range and its held value (a held
+      // value may lie outside the limits), through the leader for a mimic joint.
       double travel = 0.0;
       if (j.type == JointType::kPrismatic) {
-        travel = j.limits.has_position_limits ? std::max(std::abs(j.limits.lower), std::abs(j.limits.upper)) : inf;
-        if (j.mimic_active >= 0) travel = inf;  // conservative for mimic prismatic joints
+        const RobotJoint& src = active >= 0 ? r.joints[r.active_joints[active]] : j;
+        const double held = active >= 0 ? std::abs(mult * m.held()[active] + (active == j.active_index ? 0.0 : j.mimic_offset)) : 0.0;
+        const double range = src.limits.has_position_limits
+                                 ? std::abs(mult) * std::max(std::abs(src.limits.lower), std::abs(src.limits.upper)) +
+                                       (active == j.active_index ? 0.0 : std::abs(j.mimic_offset))
+                                 : inf;
+        travel = std::max(held, range);
       }
       if (active >= 0 && j.type != JointType::kFixed)
         chains_[k].push_back({active, mult, j.type == JointType::kPrismatic ? -1.0 : below});
