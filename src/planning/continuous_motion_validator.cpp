@@ -14,10 +14,8 @@ namespace dss {
 namespace {
 
 struct Scratch {
-  std::vector<double> q0, q1, qm;
   std::vector<Eigen::Isometry3d> XA, XB;
   std::vector<double> pad;
-  std::vector<std::vector<double>> stack;
 };
 Scratch& scratch() {
   thread_local Scratch s;
@@ -159,7 +157,6 @@ bool ContinuousMotionValidator::clear(const double* qa, const double* qb) const 
 bool ContinuousMotionValidator::check(const double* q0, const double* q1, double* last) const {
   // Depth-first halving, left half first, with an explicit stack of [ta, tb] intervals.
   const std::size_t n = checker_->model().robot().numActiveJoints();
-  Scratch& sc = scratch();
   std::vector<double> qa(n), qb(n);  // small; motions are far rarer than states
   std::vector<std::pair<double, double>> stack{{0.0, 1.0}};
   while (!stack.empty()) {
@@ -178,7 +175,6 @@ bool ContinuousMotionValidator::check(const double* q0, const double* q1, double
     stack.push_back({tm, tb});
     stack.push_back({ta, tm});
   }
-  (void)sc;
   return true;
 }
 
