@@ -1,6 +1,8 @@
 // Checked inputs and mesh URIs for the scene readers.
 #include "scene_util.h"
 
+#include "dss/robot/mesh_paths.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -49,64 +51,22 @@ std::string readTextFile(const std::string& path) {
   return s.str();
 }
 
-namespace {
-
-std::vector<std::string> splitPathList(const char* env) {
-  std::vector<std::string> out;
-  if (!env) return out;
-  std::string s(env), cur;
-  for (char c : s) {
-    if (c == ':') {
-      if (!cur.empty()) out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  if (!cur.empty()) out.push_back(cur);
-  return out;
-}
-
-bool isFile(const fs::path& p) {
-  std::error_code ec;
-  return fs::is_regular_file(p, ec);
-}
-
-}  // namespace
-
 std::string resolveMeshUri(const std::string& uri, const std::string& base_dir,
                            const SceneLoadOptions& options, const std::string& where) {
+  // One search order for robots and scenes: dss::resolveMeshUri (dss/robot/mesh_paths.h).
   static const std::string kPackage = "package://";
-  static const std::string kFile = "file://";
-  std::vector<fs::path> tried;
   if (uri.compare(0, kPackage.size(), kPackage) == 0) {
     const std::string rest = uri.substr(kPackage.size());
     const auto slash = rest.find('/');
     if (slash == std::string::npos || slash == 0)
       throw SceneError(where + ": malformed package URI '" + uri + "'");
-    const std::string pkg = rest.substr(0, slash);
-    const std::string rel = rest.substr(slash + 1);
-    auto it = options.package_dirs.find(pkg);
-    if (it != options.package_dirs.end()) tried.push_back(fs::path(it->second) / rel);
-    for (const auto& root : splitPathList(std::getenv("ROS_PACKAGE_PATH"))) {
-      tried.push_back(fs::path(root) / pkg / rel);
-      if (fs::path(root).filename() == pkg) tried.push_back(fs::path(root) / rel);
-    }
-    for (const auto& root : splitPathList(std::getenv("AMENT_PREFIX_PATH")))
-      tried.push_back(fs::path(root) / "share" / pkg / rel);
-    // package://meshes/x.stl meaning "meshes/x.stl next to the file" (VAMP's habit).
-    tried.push_back(fs::path(base_dir) / pkg / rel);
-    tried.push_back(fs::path(base_dir) / rel);
-  } else if (uri.compare(0, kFile.size(), kFile) == 0) {
-    tried.push_back(fs::path(uri.substr(kFile.size())));
-  } else {
-    const fs::path p(uri);
-    tried.push_back(p.is_absolute() ? p : fs::path(base_dir) / p);
   }
-  for (const auto& p : tried)
-    if (isFile(p)) return p.string();
+  MeshPathOptions mp;
+  mp.package_dirs = options.package_dirs;
+  std::vector<std::string> tried;
+  if (auto file = dss::resolveMeshUri(uri, base_dir, mp, &tried)) return *file;
   std::string msg = where + ": cannot resolve mesh '" + uri + "' (tried";
-  for (const auto& p : tried) msg += " " + p.string();
+  for (const auto& p : tried) msg += " " + p;
   throw SceneError(msg + ")");
 }
 
