@@ -4,6 +4,9 @@
 // scene and prints a readable summary. With --robot/--srdf/--scene/--request it solves one
 // MotionBenchMaker-style problem; with --problems DIR every sceneNNNN.yaml/requestNNNN.yaml
 // pair in DIR. stdout: one JSON object per problem; stderr: progress and a final summary.
+// With --benchmark it runs ompl::tools::Benchmark instead (one experiment per problem, one
+// planner entry per planner and checker, e.g. RRTConnect[dss] and RRTConnect[fcl-hull]) and
+// writes OMPL benchmark logs for ompl_benchmark_statistics / Planner Arena (benchmark_log.h).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -16,6 +19,7 @@
 #include <iostream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -38,9 +42,12 @@
 #include <ompl/geometric/planners/rrt/pRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/sbl/pSBL.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/config.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "benchmark_log.h"
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/scene_loader.h"
@@ -55,11 +62,18 @@ const char* kUsage =
     "usage: dss_plan                         (our dss_arm7 in its shelf scene)\n"
     "       dss_plan --robot R.urdf [--srdf S.srdf] --scene SCENE --request REQUEST.yaml\n"
     "       dss_plan --robot R.urdf [--srdf S.srdf] --problems DIR\n"
+    "       dss_plan --benchmark [--runs N] [--log FILE] [any of the above]\n"
     "  options: --planner NAME (RRTConnect) --checker dss|fcl-hull|fcl-mesh (dss)\n"
     "           --motion discrete|continuous (discrete) --time SECONDS (10) --seed N (1)\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
+    "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, 64)\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --path FILE (CSV of the solution; with several problems FILE.<problem>.csv)\n"
+    "  --benchmark: one ompl::tools::Benchmark experiment per problem, one planner entry per\n"
+    "           planner and checker, named PLANNER[CHECKER]; --planner and --checker take\n"
+    "           comma lists (checkers: dss,fcl-hull by default); --runs N per entry (10);\n"
+    "           --log FILE (dss_plan_benchmark.log; with several problems FILE.<problem>.log).\n"
+    "           Load with: ompl_benchmark_statistics FILE... -d results.db (package ompl-demos)\n"
     "  planners: RRTConnect RRT RRTstar LazyRRT BiTRRT pRRT PRM PRMstar LazyPRM KPIECE1\n"
     "            BKPIECE1 LBKPIECE1 EST SBL pSBL\n";
 
@@ -119,7 +133,71 @@ struct Args {
   unsigned long seed = 1;
   bool simplify = false;
   bool demo = false;
+  dss::Options dss_options;  // --mode, --max-iterations
+  bool benchmark = false;
+  unsigned runs = 10;
+  std::string log = "dss_plan_benchmark.log";
+  std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
 };
+
+// Strict number parsing: the whole value must be a number in range.
+double parseDouble(const std::string& option, const std::string& v, double lo, double hi) {
+  std::size_t used = 0;
+  double x = 0.0;
+  try {
+    x = std::stod(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || !std::isfinite(x) || x < lo || x > hi) {
+    std::ostringstream m;
+    m << option << ": expected a number in [" << lo << ", " << hi << "], got '" << v << "'";
+    throw std::invalid_argument(m.str());
+  }
+  return x;
+}
+
+unsigned long parseUnsigned(const std::string& option, const std::string& v, unsigned long lo,
+                            unsigned long hi) {
+  std::size_t used = 0;
+  unsigned long x = 0;
+  bool ok = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
+  if (ok) {
+    try {
+      x = std::stoul(v, &used);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || used != v.size() || x < lo || x > hi) {
+    throw std::invalid_argument(option + ": expected an integer in [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "], got '" + v + "'");
+  }
+  return x;
+}
+
+std::vector<std::string> splitList(const std::string& option, const std::string& v) {
+  std::vector<std::string> out;
+  std::stringstream ss(v);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) throw std::invalid_argument(option + ": empty name in list '" + v + "'");
+    if (std::find(out.begin(), out.end(), item) != out.end())
+      throw std::invalid_argument(option + ": '" + item + "' listed twice");
+    out.push_back(item);
+  }
+  if (out.empty() || v.back() == ',') throw std::invalid_argument(option + ": empty name in list '" + v + "'");
+  return out;
+}
+
+dss::CheckerConfig checkerConfig(const Args& a, const std::string& name) {
+  dss::CheckerConfig cfg;
+  cfg.checker = name;
+  cfg.scene_padding = a.padding;
+  cfg.self_padding = a.self_padding;
+  cfg.dss_options = a.dss_options;
+  return cfg;
+}
 
 struct Outcome {
   bool solved = false;
@@ -130,11 +208,19 @@ struct ProblemFiles {
   std::string name, scene, request;
 };
 
-Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files, bool readable) {
+// One scene/request pair loaded: the model and state map, and the start and goal states.
+struct LoadedProblem {
+  dss::Problem p;
+  std::vector<double> start;               // group values
+  std::vector<std::vector<double>> goals;  // group values, one per goal constraint set
+};
+
+LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files) {
   const dss::PlanRequest req = dss::loadPlanRequestYaml(files.request);
   dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
   const std::map<std::string, double> start = req.startState();
-  dss::Problem p = dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding);
+  LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding), {}, {}};
+  const dss::Problem& p = lp.p;
   {
     std::set<std::string> movable(p.map->jointNames().begin(), p.map->jointNames().end());
     std::set<std::string> held;
@@ -143,25 +229,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
     dss::checkRequestJoints(req, movable, held);
   }
   for (const auto& w : p.warnings) std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
-
-  dss::CheckerConfig cfg;
-  cfg.checker = a.checker;
-  cfg.scene_padding = a.padding;
-  cfg.self_padding = a.self_padding;
-  auto checker = dss::makeChecker(p, cfg);
-
-  og::SimpleSetup ss(p.si);
-  auto timed = std::make_shared<TimedChecker>(p.si, checker);
-  ss.setStateValidityChecker(timed);
-  if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
-  auto factory = planners().find(a.planner);
-  ss.setPlanner(factory->second(p.si));
-
-  ob::ScopedState<> s0(p.si->getStateSpace());
-  const std::vector<double> g0 = p.map->groupValues(start);
-  p.map->fromGroupValues(g0.data(), s0.get());
-  ss.setStartState(s0);
-  auto goal = std::make_shared<ob::GoalStates>(p.si);
+  lp.start = p.map->groupValues(start);
   for (const auto& gc : req.goals) {
     std::map<std::string, double> by_name = start;
     for (const auto& jc : gc.joint_constraints) {
@@ -170,13 +238,40 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
         std::cerr << "dss_plan: " << files.name << ": note: goal tolerances of " << jc.joint_name
                   << " ignored (the goal is the constraint's position)\n";
     }
-    ob::ScopedState<> gs(p.si->getStateSpace());
-    const std::vector<double> gv = p.map->groupValues(by_name);
-    p.map->fromGroupValues(gv.data(), gs.get());
-    goal->addState(gs);
+    lp.goals.push_back(p.map->groupValues(by_name));
   }
   if (req.goals.empty()) throw std::runtime_error(files.request + ": no goal constraints");
+  return lp;
+}
+
+void setStartAndGoals(og::SimpleSetup& ss, const LoadedProblem& lp) {
+  const auto& si = lp.p.si;
+  ob::ScopedState<> s0(si->getStateSpace());
+  lp.p.map->fromGroupValues(lp.start.data(), s0.get());
+  ss.setStartState(s0);
+  auto goal = std::make_shared<ob::GoalStates>(si);
+  for (const auto& gv : lp.goals) {
+    ob::ScopedState<> gs(si->getStateSpace());
+    lp.p.map->fromGroupValues(gv.data(), gs.get());
+    goal->addState(gs);
+  }
   ss.setGoal(goal);
+}
+
+Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files, bool readable) {
+  LoadedProblem lp = loadProblem(a, robot, files);
+  dss::Problem& p = lp.p;
+  auto checker = dss::makeChecker(p, checkerConfig(a, a.checker));
+
+  og::SimpleSetup ss(p.si);
+  auto timed = std::make_shared<TimedChecker>(p.si, checker);
+  ss.setStateValidityChecker(timed);
+  if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
+  auto factory = planners().find(a.planner);
+  ss.setPlanner(factory->second(p.si));
+  setStartAndGoals(ss, lp);
+  const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
+  const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
   std::shared_ptr<dss::ContinuousMotionValidator> cmv;
   if (a.motion == "continuous") {
     cmv = std::make_shared<dss::ContinuousMotionValidator>(
@@ -184,8 +279,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
     p.si->setMotionValidator(cmv);
   }
   ss.setup();
-  const bool start_valid = checker->isValid(s0.get());
-  const bool goal_valid = checker->isValid(goal->getState(0));
+  const bool start_valid = checker->isValid(s0);
+  const bool goal_valid = checker->isValid(g0);
   checker->resetCounters();
   timed->reset();
 
@@ -270,9 +365,176 @@ std::vector<ProblemFiles> listProblems(const std::string& dir) {
   return out;
 }
 
+// Runs req.runCount rounds of one run per planner entry, so that the entries alternate
+// (dss, fcl-hull, dss, fcl-hull, ...) and the load of a shared machine spreads evenly over
+// them; the recorded experiment is the same as one Benchmark::benchmark call would record.
+class InterleavedBenchmark : public ompl::tools::Benchmark {
+ public:
+  using ompl::tools::Benchmark::Benchmark;
+  void benchmark(const Request& req) override {
+    Request one = req;
+    one.runCount = 1;
+    CompleteExperiment all;
+    for (unsigned r = 0; r < req.runCount; ++r) {
+      ompl::tools::Benchmark::benchmark(one);
+      if (r == 0) {
+        all = exp_;
+        continue;
+      }
+      for (std::size_t i = 0; i < all.planners.size(); ++i) {
+        auto& to = all.planners[i];
+        const auto& from = exp_.planners[i];
+        to.runs.insert(to.runs.end(), from.runs.begin(), from.runs.end());
+        to.runsProgressData.insert(to.runsProgressData.end(), from.runsProgressData.begin(),
+                                   from.runsProgressData.end());
+      }
+      all.totalDuration += exp_.totalDuration;
+    }
+    all.runCount = req.runCount;
+    exp_ = all;
+  }
+};
+
+std::string logFileFor(const Args& a, const ProblemFiles& f, std::size_t problem_count) {
+  if (problem_count == 1) return a.log;
+  std::string name = f.name;
+  std::replace(name.begin(), name.end(), '/', '_');
+  const fs::path p(a.log);
+  const std::string ext = p.has_extension() ? p.extension().string() : std::string(".log");
+  return (p.parent_path() / (p.stem().string() + "." + name + ext)).string();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// --benchmark: one OMPL Benchmark experiment per problem, written to its own log file.
+int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector<ProblemFiles>& problems) {
+  std::vector<std::string> logs;
+  for (std::size_t k = 0; k < problems.size(); ++k) {
+    const ProblemFiles& files = problems[k];
+    LoadedProblem lp = loadProblem(a, robot, files);
+    dss::Problem& p = lp.p;
+    og::SimpleSetup ss(p.si);
+    auto switching = std::make_shared<dss_plan::SwitchingChecker>(p.si);
+    ss.setStateValidityChecker(switching);
+    if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
+    setStartAndGoals(ss, lp);
+
+    std::vector<std::shared_ptr<dss::ModelValidityChecker>> checkers;
+    for (const auto& name : a.checker_list) checkers.push_back(dss::makeChecker(p, checkerConfig(a, name)));
+    switching->setActive(checkers.front().get());
+    if (a.motion == "continuous")
+      p.si->setMotionValidator(std::make_shared<dss::ContinuousMotionValidator>(
+          p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checkers.front()), a.min_fraction));
+    for (const auto& c : checkers) {
+      if (!c->isValid(ss.getProblemDefinition()->getStartState(0)))
+        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under " << c->name() << "\n";
+      const auto* goals = ss.getGoal()->as<ob::GoalStates>();
+      for (std::size_t g = 0; g < goals->getStateCount(); ++g)
+        if (!c->isValid(goals->getState(g)))
+          std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g << " in collision under "
+                    << c->name() << "\n";
+    }
+
+    InterleavedBenchmark b(ss, files.name);
+    b.addExperimentParameter("padding", "REAL", std::to_string(a.padding));
+    b.addExperimentParameter("self_padding", "REAL", std::to_string(a.self_padding));
+    b.addExperimentParameter("continuous_motion", "BOOLEAN", a.motion == "continuous" ? "1" : "0");
+    b.addExperimentParameter("dss_mode", "TEXT", dss::toString(a.dss_options.mode));
+    b.addExperimentParameter("dss_max_iterations", "INTEGER", std::to_string(a.dss_options.max_iterations));
+    for (const auto& planner : a.planner_list)
+      for (const auto& c : checkers)
+        b.addPlanner(std::make_shared<dss_plan::CheckerBoundPlanner>(planners().at(planner)(p.si), c, switching));
+    // Paired seeds: before run j of every entry, OMPL's seed generator restarts from seed + j, so
+    // the sampler the planner allocates for that run draws the same states for every checker
+    // (RRTConnect[dss] and RRTConnect[fcl-hull] then explore identically wherever the checkers
+    // agree, and their columns compare the checkers alone). OMPL 1.5 reseeds its seed generator
+    // on RNG::setSeed even after sampling started (it logs an error, silenced during a benchmark).
+    std::map<const ob::Planner*, unsigned> run_index;
+    b.setPreRunEvent([&](const ob::PlannerPtr& planner) {
+      const unsigned j = run_index[planner.get()]++;
+      ompl::RNG::setSeed(std::uint_fast32_t(std::max<unsigned long>(a.seed, 1) + j));
+    });
+    std::size_t done = 0;
+    const std::size_t total = a.planner_list.size() * checkers.size() * a.runs;
+    b.setPostRunEvent([&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
+      dss_plan::addRunProperties(planner, run);
+      ++done;
+      if (done % checkers.size() == 0 || done == total)
+        std::cerr << "\r[" << k + 1 << "/" << problems.size() << "] " << files.name << ": run " << done << " of "
+                  << total << std::flush;
+    });
+
+    ompl::tools::Benchmark::Request req(a.time, 4096.0, a.runs, 0.05, /*displayProgress=*/false,
+                                        /*saveConsoleOutput=*/false, /*simplify=*/true);
+    b.benchmark(req);
+    std::cerr << "\n";
+    const std::string log = logFileFor(a, files, problems.size());
+    {
+      std::ostringstream text;
+      b.saveResultsToStream(text);
+      std::string body = text.str();
+      // Debian's OMPL 1.5.2 defines OMPL_VERSION as "": write the version from its numeric
+      // macros so that ompl_benchmark_statistics records "OMPL 1.5.2" (Planner Arena shows it).
+      const std::string bare = "OMPL version \n";
+      if (body.compare(0, bare.size(), bare) == 0)
+        body.replace(0, bare.size(), "OMPL version " + std::to_string(OMPL_MAJOR_VERSION) + "." +
+                                         std::to_string(OMPL_MINOR_VERSION) + "." +
+                                         std::to_string(OMPL_PATCH_VERSION) + "\n");
+      std::ofstream out(log);
+      out << body;
+      out.close();
+      if (!out) throw std::runtime_error(log + ": cannot write the benchmark log");
+    }
+    logs.push_back(log);
+
+    for (const auto& pe : b.getRecordedExperimentData().planners) {
+      std::vector<double> times, checks, checking;
+      int solved = 0;
+      for (const auto& run : pe.runs) {
+        auto get = [&](const char* key) {
+          auto it = run.find(key);
+          return it == run.end() || it->second.empty() ? 0.0 : std::stod(it->second);
+        };
+        solved += get("solved BOOLEAN") != 0.0;
+        times.push_back(get("time REAL"));
+        checks.push_back(get("validity checks INTEGER"));
+        checking.push_back(get("checking time REAL"));
+      }
+      nlohmann::json j;
+      j["problem"] = files.name;
+      j["planner"] = pe.name;
+      j["runs"] = pe.runs.size();
+      j["solved"] = solved;
+      j["median_time_s"] = median(times);
+      j["median_validity_checks"] = median(checks);
+      j["median_checking_time_s"] = median(checking);
+      j["log"] = log;
+      std::cout << j.dump() << std::endl;
+    }
+  }
+  std::cerr << "benchmark log" << (logs.size() > 1 ? "s" : "") << " written:";
+  for (const auto& l : logs) std::cerr << " " << l;
+  std::cerr << "\nload with: ompl_benchmark_statistics";
+  for (const auto& l : logs) std::cerr << " " << l;
+  std::cerr << " -d dss_plan_benchmark.db   (Debian package ompl-demos; then plannerarena.org)\n";
+  return 0;
+}
+
+dss::Mode parseMode(const std::string& m) {
+  if (m == "exact") return dss::Mode::kExact;
+  if (m == "double") return dss::Mode::kDouble;
+  if (m == "float") return dss::Mode::kFloat;
+  throw std::invalid_argument("--mode: expected exact, double or float, got '" + m + "'");
+}
+
 int run(int argc, char** argv) {
   Args a;
   a.demo = argc == 1;
+  bool checker_given = false, runs_given = false, log_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     auto value = [&]() -> std::string {
@@ -285,29 +547,48 @@ int run(int argc, char** argv) {
     else if (s == "--request") a.request = value();
     else if (s == "--problems") a.problems = value();
     else if (s == "--planner") a.planner = value();
-    else if (s == "--checker") a.checker = value();
+    else if (s == "--checker") a.checker = value(), checker_given = true;
     else if (s == "--motion") a.motion = value();
-    else if (s == "--time") a.time = std::stod(value());
-    else if (s == "--seed") a.seed = std::stoul(value());
-    else if (s == "--padding") a.padding = std::stod(value());
-    else if (s == "--self-padding") a.self_padding = std::stod(value());
-    else if (s == "--resolution") a.resolution = std::stod(value());
+    else if (s == "--time") a.time = parseDouble(s, value(), 1e-6, 1e6);
+    else if (s == "--seed") a.seed = parseUnsigned(s, value(), 0, 4294967295ul);
+    else if (s == "--padding") a.padding = parseDouble(s, value(), 0.0, 1e3);
+    else if (s == "--self-padding") a.self_padding = parseDouble(s, value(), 0.0, 1e3);
+    else if (s == "--resolution") a.resolution = parseDouble(s, value(), 0.0, 1.0);
     else if (s == "--path") a.path = value();
     else if (s == "--simplify") a.simplify = true;
-    else if (s == "--motion-min-fraction") a.min_fraction = std::stod(value());
+    else if (s == "--motion-min-fraction") a.min_fraction = parseDouble(s, value(), 1e-12, 1.0);
+    else if (s == "--mode") a.dss_options.mode = parseMode(value());
+    else if (s == "--max-iterations") a.dss_options.max_iterations = int(parseUnsigned(s, value(), 1, 1000000));
+    else if (s == "--benchmark") a.benchmark = true;
+    else if (s == "--runs") a.runs = unsigned(parseUnsigned(s, value(), 1, 1000000)), runs_given = true;
+    else if (s == "--log") a.log = value(), log_given = true;
     else if (s == "--demo") a.demo = true;
     else if (s == "-h" || s == "--help") {
       std::cout << kUsage;
       return 0;
     } else throw std::invalid_argument("unknown argument '" + s + "'\n" + kUsage);
   }
-  if (planners().find(a.planner) == planners().end())
-    throw std::invalid_argument("unknown planner '" + a.planner + "'\n" + kUsage);
-  if (a.motion == "continuous" && a.checker != "dss")
-    throw std::invalid_argument("--motion continuous needs --checker dss");
+  if (a.benchmark && !checker_given) a.checker = "dss,fcl-hull";
+  a.planner_list = splitList("--planner", a.planner);
+  a.checker_list = splitList("--checker", a.checker);
+  for (const auto& pl : a.planner_list)
+    if (planners().find(pl) == planners().end())
+      throw std::invalid_argument("unknown planner '" + pl + "'\n" + kUsage);
+  for (const auto& c : a.checker_list)
+    if (c != "dss" && c != "fcl-hull" && c != "fcl-mesh")
+      throw std::invalid_argument("unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");
   if (a.motion != "discrete" && a.motion != "continuous") throw std::invalid_argument("--motion must be discrete or continuous");
-  if (a.checker != "dss" && a.checker != "fcl-hull" && a.checker != "fcl-mesh")
-    throw std::invalid_argument("unknown checker '" + a.checker + "' (dss, fcl-hull, fcl-mesh)");
+  if (a.motion == "continuous" && a.checker_list != std::vector<std::string>{"dss"})
+    throw std::invalid_argument("--motion continuous needs --checker dss (the continuous validator is DSS's)");
+  if (!a.benchmark) {
+    if (a.planner_list.size() > 1) throw std::invalid_argument("--planner: a list of planners needs --benchmark");
+    if (a.checker_list.size() > 1) throw std::invalid_argument("--checker: a list of checkers needs --benchmark");
+    if (runs_given) throw std::invalid_argument("--runs needs --benchmark");
+    if (log_given) throw std::invalid_argument("--log needs --benchmark");
+  } else {
+    if (!a.path.empty()) throw std::invalid_argument("--path is not available with --benchmark");
+    if (a.log.empty()) throw std::invalid_argument("--log: empty file name");
+  }
 
   std::vector<ProblemFiles> problems;
   if (a.robot.empty() && a.request.empty() && a.problems.empty()) a.demo = true;  // options only
@@ -326,6 +607,7 @@ int run(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(a.seed);
   const dss::LoadedRobot robot = dss::loadRobot(a.robot, a.srdf);
+  if (a.benchmark) return runBenchmark(a, robot, problems);
 
   std::vector<double> times;
   int solved = 0;

@@ -1,0 +1,80 @@
+// dss_plan --benchmark: OMPL Benchmark experiments where each planner entry runs with its own
+// validity checker ("RRTConnect[dss]", "RRTConnect[fcl-hull]", ...) on one shared
+// SpaceInformation.
+//
+// How the checker follows the planner entry: the SpaceInformation holds one SwitchingChecker
+// for the whole experiment; every planner entry is a CheckerBoundPlanner wrapping the OMPL
+// planner and one checker. Its solve() makes its checker the active one, zeroes that checker's
+// counters and the switch's timer, runs the wrapped planner and snapshots the counters and the
+// checking time before returning. Benchmark then checks and simplifies the solution (with the
+// same checker, still active) and calls the post-run event, which writes the snapshot: so the
+// extra columns count the planner's own work only, not OMPL's path checks or simplification.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/StateValidityChecker.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+
+#include "dss/planning/validity_checker.h"
+
+namespace dss_plan {
+
+/// Forwards isValid/clearance to the active checker and adds the wall time of each isValid
+/// call to a counter. The active checker is switched only between planning runs.
+class SwitchingChecker : public ompl::base::StateValidityChecker {
+ public:
+  explicit SwitchingChecker(const ompl::base::SpaceInformationPtr& si);
+  void setActive(const dss::ModelValidityChecker* checker);
+  bool isValid(const ompl::base::State* state) const override;
+  double clearance(const ompl::base::State* state) const override;
+  double seconds() const { return double(ns_.load()) * 1e-9; }
+  void resetTime() { ns_ = 0; }
+
+ private:
+  std::atomic<const dss::ModelValidityChecker*> active_{nullptr};
+  mutable std::atomic<long long> ns_{0};
+};
+
+/// What one planning run cost in collision checking (the planner's solve only).
+struct RunRecord {
+  dss::CheckerCounters counters;
+  double checking_seconds = 0.0;
+  std::uint64_t motion_checks = 0;
+};
+
+/// An OMPL planner bound to one validity checker; named "<planner>[<checker>]".
+class CheckerBoundPlanner : public ompl::base::Planner {
+ public:
+  CheckerBoundPlanner(ompl::base::PlannerPtr inner,
+                      std::shared_ptr<dss::ModelValidityChecker> checker,
+                      std::shared_ptr<SwitchingChecker> switching);
+
+  ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
+  void clear() override;
+  void setup() override;
+  void setProblemDefinition(const ompl::base::ProblemDefinitionPtr& pdef) override;
+  void getPlannerData(ompl::base::PlannerData& data) const override;
+
+  const RunRecord& lastRun() const { return last_; }
+  const dss::ModelValidityChecker& checker() const { return *checker_; }
+
+ private:
+  ompl::base::PlannerPtr inner_;
+  std::shared_ptr<dss::ModelValidityChecker> checker_;
+  std::shared_ptr<SwitchingChecker> switching_;
+  RunRecord last_;
+};
+
+/// The post-run event: adds the last run's record to the run's properties, with OMPL's
+/// "<name> <TYPE>" key convention (ompl_benchmark_statistics makes columns named with
+/// underscores): validity checks, checking time (s), us per check, invalid states,
+/// narrow phase tests, motion checks, and cap hits for the DSS checker.
+void addRunProperties(const ompl::base::PlannerPtr& planner,
+                      ompl::tools::Benchmark::RunProperties& run);
+
+}  // namespace dss_plan
