@@ -8,6 +8,8 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/SpaceInformation.h>
 
+#include "dss/planning/continuous_motion_validator.h"
+
 namespace ob = ompl::base;
 
 namespace dss_plan {
@@ -54,7 +56,10 @@ ob::PlannerStatus CheckerBoundPlanner::solve(const ob::PlannerTerminationConditi
   switching_->resetTime();
   const auto& mv = si_->getMotionValidator();
   const std::uint64_t motions0 = mv->getValidMotionCount() + mv->getInvalidMotionCount();
+  const auto* cmv = dynamic_cast<const dss::ContinuousMotionValidator*>(mv.get());
+  const std::uint64_t sub0 = cmv ? cmv->subMotions() : 0;
   const ob::PlannerStatus status = inner_->solve(ptc);
+  last_.sub_motions = cmv ? static_cast<long long>(cmv->subMotions() - sub0) : -1;
   last_.counters = checker_->counters();
   last_.checking_seconds = switching_->seconds();
   last_.motion_checks = mv->getValidMotionCount() + mv->getInvalidMotionCount() - motions0;
@@ -96,6 +101,7 @@ void addRunProperties(const ob::PlannerPtr& planner, ompl::tools::Benchmark::Run
   put("narrow phase tests INTEGER", r.counters.pair_tests);
   put("motion checks INTEGER", r.motion_checks);
   if (bound->checker().name() == "dss") put("cap hits INTEGER", r.counters.cap_hits);
+  if (r.sub_motions >= 0) put("sub motions INTEGER", r.sub_motions);
 }
 
 }  // namespace dss_plan

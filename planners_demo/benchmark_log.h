@@ -45,6 +45,7 @@ struct RunRecord {
   dss::CheckerCounters counters;
   double checking_seconds = 0.0;
   std::uint64_t motion_checks = 0;
+  long long sub_motions = -1;  ///< continuous validator's sub-motions (-1: discrete validator)
 };
 
 /// An OMPL planner bound to one validity checker; named "<planner>[<checker>]".
@@ -73,7 +74,9 @@ class CheckerBoundPlanner : public ompl::base::Planner {
 /// The post-run event: adds the last run's record to the run's properties, with OMPL's
 /// "<name> <TYPE>" key convention (ompl_benchmark_statistics makes columns named with
 /// underscores): validity checks, checking time (s), us per check, invalid states,
-/// narrow phase tests, motion checks, and cap hits for the DSS checker.
+/// narrow phase tests, motion checks, cap hits for the DSS checker, and sub motions with the
+/// continuous motion validator (whose swept-hull tests are not in "checking time", which
+/// times isValid calls only).
 void addRunProperties(const ompl::base::PlannerPtr& planner,
                       ompl::tools::Benchmark::RunProperties& run);
 

@@ -22,6 +22,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/goals/GoalStates.h>
@@ -413,6 +415,7 @@ double median(std::vector<double> v) {
 // --benchmark: one OMPL Benchmark experiment per problem, written to its own log file.
 int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector<ProblemFiles>& problems) {
   std::vector<std::string> logs;
+  const bool tty = isatty(STDERR_FILENO) != 0;
   for (std::size_t k = 0; k < problems.size(); ++k) {
     const ProblemFiles& files = problems[k];
     LoadedProblem lp = loadProblem(a, robot, files);
@@ -463,7 +466,7 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     b.setPostRunEvent([&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
       dss_plan::addRunProperties(planner, run);
       ++done;
-      if (done % checkers.size() == 0 || done == total)
+      if (tty && (done % checkers.size() == 0 || done == total))
         std::cerr << "\r[" << k + 1 << "/" << problems.size() << "] " << files.name << ": run " << done << " of "
                   << total << std::flush;
     });
@@ -471,7 +474,8 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     ompl::tools::Benchmark::Request req(a.time, 4096.0, a.runs, 0.05, /*displayProgress=*/false,
                                         /*saveConsoleOutput=*/false, /*simplify=*/true);
     b.benchmark(req);
-    std::cerr << "\n";
+    if (tty) std::cerr << "\r";
+    std::cerr << "[" << k + 1 << "/" << problems.size() << "] " << files.name << ": " << total << " runs done\n";
     const std::string log = logFileFor(a, files, problems.size());
     {
       std::ostringstream text;
