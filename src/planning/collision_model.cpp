@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dss/core/any_shape_query.h"
+
 namespace dss {
 
 namespace {
@@ -187,6 +189,185 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     for (int o : slot_obstacles[s]) slots_[s].obstacles.push_back(new_index[o]);
     scene_pairs_ += slots_[s].obstacles.size();
   }
+  buildSelfTables(options);
+}
+
+double CollisionModel::prismaticTravel(const RobotJoint& j) const {
+  const RobotModel& m = *robot_;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (j.type != JointType::kPrismatic) return 0.0;
+  double travel = 0.0;
+  if (j.active_index >= 0) {
+    travel = std::abs(held_[j.active_index]);
+    travel = j.limits.has_position_limits ? std::max({travel, std::abs(j.limits.lower), std::abs(j.limits.upper)})
+                                          : inf;
+  }
+  if (j.mimic_active >= 0) {
+    const RobotJoint& lead = m.joints[m.active_joints[j.mimic_active]];
+    const double lr = lead.limits.has_position_limits
+                          ? std::max(std::abs(lead.limits.lower), std::abs(lead.limits.upper))
+                          : inf;
+    travel = std::max({travel, std::abs(j.mimic_multiplier) * lr + std::abs(j.mimic_offset),
+                       std::abs(j.mimic_multiplier * held_[j.mimic_active] + j.mimic_offset)});
+  }
+  return travel;
+}
+
+void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
+  const RobotModel& m = *robot_;
+  if (options.self_table_cells_2d <= 0 && options.self_table_cells_1d <= 0) return;
+  const double pi = 3.141592653589793;
+  std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
+  std::vector<double> q = held_;
+  // Joints from a link up to (not including) the link `stop`.
+  auto chainUp = [&](int link, int stop) {
+    std::vector<int> out;
+    for (int l = link; l != stop && m.links[l].parent_joint >= 0; l = m.links[l].parent_link)
+      out.push_back(m.links[l].parent_joint);
+    return out;
+  };
+  auto ancestors = [&](int link) {
+    std::vector<int> out;
+    for (int l = link; l >= 0; l = m.links[l].parent_link) out.push_back(l);
+    return out;
+  };
+  for (SelfPair& pair : self_pairs_) {
+    const Slot& sa = slots_[pair.a];
+    const Slot& sb = slots_[pair.b];
+    const std::vector<int> up_a = ancestors(sa.link), up_b = ancestors(sb.link);
+    int common = -1;
+    for (int l : up_a)
+      if (std::find(up_b.begin(), up_b.end(), l) != up_b.end()) {
+        common = l;
+        break;
+      }
+    if (common < 0) continue;
+    const std::vector<int> path_a = chainUp(sa.link, common), path_b = chainUp(sb.link, common);
+    // Bounds on how far a point of B moves (relative to A) per unit change of each joint on
+    // the path: the joint origin's distance to B's geometry, through the common ancestor.
+    const double radius_b = sb.center_L.norm() + sb.radius;
+    struct Term {
+      int joint;
+      double per_unit;  // displacement bound per unit of the joint value
+    };
+    std::vector<Term> terms;
+    double below = radius_b;  // bound on |p - origin of the current frame|, p in B
+    bool ok = true;
+    for (int j : path_b) {
+      const RobotJoint& J = m.joints[j];
+      if (J.isMoving()) terms.push_back({j, J.type == JointType::kPrismatic ? 1.0 : below});
+      below += J.X_PJ.translation().norm() + prismaticTravel(J);
+    }
+    // A-side joints: |joint origin - ancestor origin| + below (B's bound from the ancestor).
+    std::vector<double> up_len(path_a.size() + 1, 0.0);
+    for (int i = int(path_a.size()) - 1; i >= 0; --i) {
+      const RobotJoint& J = m.joints[path_a[i]];
+      up_len[i] = up_len[i + 1] + J.X_PJ.translation().norm() + prismaticTravel(J);
+    }
+    for (std::size_t i = 0; i < path_a.size(); ++i) {
+      const RobotJoint& J = m.joints[path_a[i]];
+      if (!J.isMoving()) continue;
+      terms.push_back({path_a[i], J.type == JointType::kPrismatic
+                                      ? 1.0
+                                      : J.X_PJ.translation().norm() + up_len[i + 1] + below});
+    }
+    // Variables: the active joints the path joints read (mimic joints through their leader).
+    SelfPairTable t;
+    double per_var[2] = {0.0, 0.0};
+    for (const Term& term : terms) {
+      const RobotJoint& J = m.joints[term.joint];
+      int v = J.active_index;
+      double mult = 1.0;
+      if (v < 0) {
+        v = J.mimic_active;
+        mult = J.mimic_multiplier;
+      }
+      if (v < 0 || !std::isfinite(term.per_unit)) {
+        ok = false;
+        break;
+      }
+      int k = 0;
+      while (k < t.num_vars && t.var[k] != v) ++k;
+      if (k == t.num_vars) {
+        if (t.num_vars == 2) {
+          ok = false;
+          break;
+        }
+        t.var[t.num_vars++] = v;
+      }
+      per_var[k] += std::abs(mult) * term.per_unit;
+    }
+    if (!ok || t.num_vars == 0) continue;
+    const int n = t.num_vars == 1 ? options.self_table_cells_1d : options.self_table_cells_2d;
+    if (n <= 0) continue;
+    for (int k = 0; k < t.num_vars; ++k) {
+      const RobotJoint& L = m.joints[m.active_joints[t.var[k]]];
+      if (L.type == JointType::kContinuous ||
+          (L.type == JointType::kRevolute && !L.limits.has_position_limits)) {
+        t.wrap[k] = true;
+        t.lo[k] = -pi;
+        t.hi[k] = pi;
+      } else if (L.limits.has_position_limits && L.limits.lower < L.limits.upper) {
+        t.lo[k] = L.limits.lower;
+        t.hi[k] = L.limits.upper;
+      } else {
+        ok = false;
+      }
+      t.cells[k] = n;
+      t.inv_width[k] = double(n) / (t.hi[k] - t.lo[k]);
+    }
+    if (!ok) continue;
+    t.padding = options.self_table_padding;
+    t.free.assign(std::size_t(t.cells[0]) * std::size_t(t.cells[1]), 0);
+    Options exact;
+    exact.mode = Mode::kExact;
+    // Certify the block [i0, i1) x [j0, j1) of cells; split it until its cells are decided.
+    const double width[2] = {(t.hi[0] - t.lo[0]) / t.cells[0],
+                             t.num_vars > 1 ? (t.hi[1] - t.lo[1]) / t.cells[1] : 0.0};
+    auto certify = [&](auto&& self, int i0, int i1, int j0, int j1) -> void {
+      double moved = 0.0;
+      const int lo_idx[2] = {i0, j0}, hi_idx[2] = {i1, j1};
+      for (int k = 0; k < t.num_vars; ++k) {
+        const double a = t.lo[k] + lo_idx[k] * width[k];
+        const double b = hi_idx[k] == t.cells[k] ? t.hi[k] : t.lo[k] + hi_idx[k] * width[k];
+        q[t.var[k]] = 0.5 * (a + b);
+        // Half-width, grown so that a value whose cell index rounds into this block is covered.
+        const double half = 0.5 * (b - a) * (1.0 + 1e-6) + 1e-12 * (1.0 + std::abs(b) + std::abs(a));
+        moved += per_var[k] * half;
+      }
+      kin_.computeLinkPoses(q.data(), X.data());
+      const double pad = t.padding + moved * (1.0 + 1e-9) + 1e-12;
+      bool free = true;
+      for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements && free; ++ea)
+        for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements && free; ++eb) {
+          const CollisionElement& A = *elements_[ea].source;
+          const CollisionElement& B = *elements_[eb].source;
+          const Result r = intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad,
+                                     Algorithm::kDss);
+          free = !r.intersect;
+        }
+      if (free) {
+        for (int i = i0; i < i1; ++i)
+          for (int j = j0; j < j1; ++j) t.free[std::size_t(i) * t.cells[1] + j] = 1;
+        return;
+      }
+      if (i1 - i0 <= 1 && j1 - j0 <= 1) return;
+      const int im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1;
+      const int jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
+      self(self, i0, im, j0, jm);
+      if (jm < j1) self(self, i0, im, jm, j1);
+      if (im < i1) {
+        self(self, im, i1, j0, jm);
+        if (jm < j1) self(self, im, i1, jm, j1);
+      }
+    };
+    certify(certify, 0, t.cells[0], 0, t.cells[1]);
+    q = held_;
+    for (unsigned char c : t.free) t.num_free += c;
+    if (t.num_free == 0) continue;
+    pair.table = int(self_tables_.size());
+    self_tables_.push_back(std::move(t));
+  }
 }
 
 void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
@@ -242,6 +423,12 @@ std::string CollisionModel::summary() const {
      << scene_pairs_ << " of " << scene_pairs_before_ << " robot-scene link pairs, "
      << self_pairs_.size() << " of " << self_report_.all_pairs << " self link pairs ("
      << moving << " of " << slots_.size() << " links with geometry move)";
+  if (!self_tables_.empty()) {
+    std::size_t cells = 0, free = 0;
+    for (const auto& t : self_tables_) cells += t.free.size(), free += t.num_free;
+    os << ", " << self_tables_.size() << " self-pair tables (" << free << " of " << cells
+       << " cells certified free)";
+  }
   return os.str();
 }
 

@@ -25,7 +25,7 @@ namespace {
 const char* kUsage =
     "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
     "                 (--states FILE.csv | --random N [--seed S])\n"
-    "                 [--checker dss|fcl-hull|fcl-mesh[,...]] [--padding r] [--self-padding r]\n"
+    "                 [--checker dss|fcl-hull|fcl-mesh[:sweep][,...]] [--padding r] [--self-padding r]\n"
     "                 [--repeat K] [--describe]\n"
     "                 [--mode exact|double|float] [--algorithm dss|gjk|hybrid] [--no-obb-stage] [--threads N]\n";
 
@@ -239,6 +239,13 @@ int run(int argc, char** argv) {
   for (std::size_t k = 0; k < names_list.size(); ++k) {
     dss::CheckerConfig cfg;
     cfg.checker = names_list[k];
+    // "fcl-hull:sweep": FCL behind the DSS checker's own sphere/oriented-box sweep instead of
+    // FCL's world AABBs.
+    if (cfg.checker.size() > 6 && cfg.checker.compare(cfg.checker.size() - 6, 6, ":sweep") == 0 &&
+        cfg.checker.rfind("fcl-", 0) == 0) {
+      cfg.checker.resize(cfg.checker.size() - 6);
+      cfg.fcl_prefilter = "shared";
+    }
     cfg.scene_padding = padding;
     cfg.self_padding = self_padding;
     if (mode == "exact") cfg.dss_options.mode = dss::Mode::kExact;
@@ -281,7 +288,7 @@ int run(int argc, char** argv) {
     std::sort(per_state_wall.begin(), per_state_wall.end());
     const auto c = checker->counters();
     nlohmann::json j;
-    j["checker"] = checker->name();
+    j["checker"] = names_list[k];
     if (checker->name() == "dss") j["mode"] = mode, j["algorithm"] = algorithm;
     j["states"] = st.size();
     j["valid"] = std::count(valid.begin(), valid.end(), 1);
@@ -293,7 +300,10 @@ int run(int argc, char** argv) {
     j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
     j["cap_hits"] = c.cap_hits;
     j["model"] = p.model->summary();
-    if (checker->name() != "dss") j["solver"] = dss::FclValidityChecker::solverDescription();
+    if (const auto* f = dynamic_cast<const dss::FclValidityChecker*>(checker.get())) {
+      j["solver"] = dss::FclValidityChecker::solverDescription();
+      j["prefilter"] = f->prefilterName();
+    }
     if (k == 0) {
       first = valid;
       for (char v : valid) std::cout << (v ? 1 : 0) << "\n";

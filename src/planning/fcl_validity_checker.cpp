@@ -23,6 +23,25 @@ std::shared_ptr<fcl::CollisionGeometryd> bvhFrom(const mesh::TriangleMesh& m, co
   return bvh;
 }
 
+// The world AABB of a geometry as fcl::CollisionObject::computeAABB makes it: the local box
+// translated when the pose does not rotate, else a cube about the local bounding sphere.
+fcl::AABBd worldAabb(const fcl::CollisionGeometryd& g, const Eigen::Isometry3d& X) {
+  fcl::AABBd box;
+  if (X.linear().isIdentity()) {
+    box = fcl::translate(g.aabb_local, Eigen::Vector3d(X.translation()));
+  } else {
+    const Eigen::Vector3d c = X * g.aabb_center;
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(g.aabb_radius);
+    box.min_ = c - r;
+    box.max_ = c + r;
+  }
+  return box;
+}
+
+bool overlap(const fcl::AABBd& a, const fcl::AABBd& b, double pad) {
+  return (a.min_.array() <= b.max_.array() + pad).all() && (b.min_.array() <= a.max_.array() + pad).all();
+}
+
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool as_mesh,
@@ -82,9 +101,10 @@ std::shared_ptr<fcl::CollisionGeometryd> fclMeshGeometry(const std::string& path
 FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr& si,
                                        std::shared_ptr<const CollisionModel> model,
                                        std::shared_ptr<const GroupStateMap> map, FclGeometry geometry,
-                                       double scene_padding, double self_padding)
+                                       double scene_padding, double self_padding,
+                                       FclPrefilter prefilter)
     : ModelValidityChecker(si, std::move(model), std::move(map), scene_padding, self_padding),
-      geometry_(geometry) {
+      geometry_(geometry), prefilter_(prefilter) {
   const bool mesh = geometry_ == FclGeometry::kMesh;
   for (const auto& e : model_->elements()) {
     const CollisionElement& ce = *e.source;
@@ -96,8 +116,10 @@ FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr& si
       elements_.push_back(fclGeometry(ce.shape, mesh, ce.description));
     }
   }
-  for (const auto& o : model_->scene().obstacles)
+  for (const auto& o : model_->scene().obstacles) {
     obstacles_.push_back(fclGeometry(o.shape, mesh, model_->scene().source + ": " + o.name));
+    obstacle_boxes_.push_back(worldAabb(*obstacles_.back(), o.X_WO));
+  }
 }
 
 std::string FclValidityChecker::solverDescription() {
@@ -121,11 +143,12 @@ bool FclValidityChecker::pair(const fcl::CollisionGeometryd* a, const Eigen::Iso
   return fcl::collide(a, X_A, b, X_B, req, res) > 0;
 }
 
-bool FclValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
+bool FclValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL) const {
+  if (prefilter_ == FclPrefilter::kAabb) return collidesAabb(X_WL);
   std::uint64_t tests = 0;
   const auto& obstacles = model_->scene().obstacles;
   const bool hit = model_->anyCollision(
-      X_WL, scene_padding_, self_padding_,
+      q, X_WL, scene_padding_, self_padding_,
       [&](int e, const Eigen::Isometry3d& X_WS, int o) {
         ++tests;
         return pair(elements_[e].get(), X_WS, obstacles_[o].get(), obstacles[o].X_WO, scene_padding_);
@@ -135,6 +158,49 @@ bool FclValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
         return pair(elements_[a].get(), X_WA, elements_[b].get(), X_WB, self_padding_);
       },
       obb_stage_);
+  slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
+  return hit;
+}
+
+bool FclValidityChecker::collidesAabb(const Eigen::Isometry3d* X_WL) const {
+  const CollisionModel& m = *model_;
+  const auto& elements = m.elements();
+  const auto& obstacles = m.scene().obstacles;
+  // Per state, as a CollisionObject per element would: world poses and AABBs of the elements
+  // of moving links (per-thread scratch; no allocation once warmed up).
+  thread_local std::vector<Eigen::Isometry3d> X_WE;
+  thread_local std::vector<fcl::AABBd> boxes;
+  if (X_WE.size() < elements.size()) {
+    X_WE.resize(elements.size());
+    boxes.resize(elements.size());
+  }
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    X_WE[e] = X_WL[elements[e].link] * elements[e].source->X_LS;
+    boxes[e] = worldAabb(*elements_[e], X_WE[e]);
+  }
+  std::uint64_t tests = 0;
+  bool hit = false;
+  for (const auto& s : m.slots()) {
+    for (int o : s.obstacles) {
+      for (int e = s.first_element; e < s.first_element + s.num_elements && !hit; ++e) {
+        if (!overlap(boxes[e], obstacle_boxes_[o], scene_padding_)) continue;
+        ++tests;
+        hit = pair(elements_[e].get(), X_WE[e], obstacles_[o].get(), obstacles[o].X_WO, scene_padding_);
+      }
+      if (hit) break;
+    }
+    if (hit) break;
+  }
+  for (std::size_t k = 0; k < m.selfPairs().size() && !hit; ++k) {
+    const auto& sa = m.slots()[m.selfPairs()[k].a];
+    const auto& sb = m.slots()[m.selfPairs()[k].b];
+    for (int a = sa.first_element; a < sa.first_element + sa.num_elements && !hit; ++a)
+      for (int b = sb.first_element; b < sb.first_element + sb.num_elements && !hit; ++b) {
+        if (!overlap(boxes[a], boxes[b], self_padding_)) continue;
+        ++tests;
+        hit = pair(elements_[a].get(), X_WE[a], elements_[b].get(), X_WE[b], self_padding_);
+      }
+  }
   slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   return hit;
 }

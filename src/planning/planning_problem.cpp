@@ -64,9 +64,12 @@ std::shared_ptr<ModelValidityChecker> makeChecker(const Problem& p, const Checke
     return std::make_shared<DssValidityChecker>(p.si, p.model, p.map, s);
   }
   if (c.checker == "fcl-hull" || c.checker == "fcl-mesh") {
+    if (c.fcl_prefilter != "aabb" && c.fcl_prefilter != "shared")
+      throw std::invalid_argument("unknown FCL prefilter '" + c.fcl_prefilter + "' (expected aabb or shared)");
     auto f = std::make_shared<FclValidityChecker>(
         p.si, p.model, p.map, c.checker == "fcl-hull" ? FclGeometry::kHull : FclGeometry::kMesh,
-        c.scene_padding, c.self_padding);
+        c.scene_padding, c.self_padding,
+        c.fcl_prefilter == "aabb" ? FclPrefilter::kAabb : FclPrefilter::kShared);
     f->setObbStage(c.obb_stage);
     return f;
   }

@@ -41,7 +41,7 @@ bool ModelValidityChecker::isValid(const ompl::base::State* state) const {
     return false;
   }
   model_->kinematics().computeLinkPoses(s.q.data(), s.X_WL.data());
-  if (collides(s.X_WL.data())) {
+  if (collides(s.q.data(), s.X_WL.data())) {
     slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
@@ -53,7 +53,7 @@ bool ModelValidityChecker::isValidJoints(const double* q) const {
   Scratch& s = scratch();
   s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
   model_->kinematics().computeLinkPoses(q, s.X_WL.data());
-  if (collides(s.X_WL.data())) {
+  if (collides(q, s.X_WL.data())) {
     slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
@@ -97,7 +97,7 @@ DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si
   obb_stage_ = settings.obb_stage;
 }
 
-bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
+bool DssValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL) const {
   const CollisionModel& m = *model_;
   const auto& elements = m.elements();
   const auto& obstacles = m.scene().obstacles;
@@ -109,7 +109,7 @@ bool DssValidityChecker::collides(const Eigen::Isometry3d* X_WL) const {
     return r.intersect;
   };
   const bool hit = m.anyCollision(
-      X_WL, scene_padding_, self_padding_,
+      q, X_WL, scene_padding_, self_padding_,
       [&](int e, const Eigen::Isometry3d& X_WS, int o) {
         const Obstacle& ob = obstacles[o];
         return decideResult(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO,

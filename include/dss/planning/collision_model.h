@@ -16,11 +16,23 @@
 // Each link and each element carries a bounding sphere in its link frame; with the link poses
 // of a state they give a cheap world-space prefilter before the exact narrow phase. The
 // narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
+//
+// Self-pair tables: when the relative pose of two links depends on one or two joint values
+// only (e.g. the Panda's link5 and link7: joints 6 and 7), the joint range is cut into cells
+// and every cell that is provably free for every value inside it is marked once, at build
+// time: the pose at the cell centre is decided by exact DSS with the padding grown by a bound
+// on how far any point of one link can move relative to the other within the cell (the
+// joint's half-width times the distance of the geometry from the joint; a prismatic joint
+// moves by its half-width). Cells are certified coarse to fine (a free block marks all its
+// cells). At query time a certified cell skips the pair: a table lookup instead of a narrow
+// phase. Any other cell, or a value outside the range, takes the normal path, so the tables
+// never change an answer, only its cost.
 #pragma once
 
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -40,6 +52,39 @@ struct CollisionModelOptions {
   double prune_margin = 0.0;
   /// Drop self pairs of links rigidly attached to each other.
   bool exclude_rigid = true;
+  /// Self-pair tables (see above): cells per joint for pairs moved by two joints (0: no
+  /// tables), and for pairs moved by one joint.
+  int self_table_cells_2d = 64;
+  int self_table_cells_1d = 1024;
+  /// The self padding the tables certify: a checker uses them when its own self padding is
+  /// at most this.
+  double self_table_padding = 0.0;
+};
+
+/// Certified-free cells of a self pair over the one or two joint values it depends on.
+struct SelfPairTable {
+  int num_vars = 0;
+  int var[2] = {-1, -1};        ///< active joint indices
+  double lo[2] = {0, 0}, hi[2] = {0, 0}, inv_width[2] = {0, 0};
+  bool wrap[2] = {false, false};  ///< continuous joint: the value is taken modulo 2 pi
+  int cells[2] = {1, 1};
+  double padding = 0.0;
+  std::vector<unsigned char> free;  ///< cells[0] x cells[1], row-major
+  std::size_t num_free = 0;
+
+  /// True when the cell of q is certified free (false outside the range, or for NaN).
+  bool certifiedFree(const double* q) const {
+    int idx = 0;
+    for (int k = 0; k < num_vars; ++k) {
+      double v = q[var[k]];
+      if (wrap[k]) v -= 6.283185307179586 * std::floor((v + 3.141592653589793) / 6.283185307179586);
+      if (!(v >= lo[k] && v <= hi[k])) return false;
+      int i = static_cast<int>((v - lo[k]) * inv_width[k]);
+      if (i >= cells[k]) i = cells[k] - 1;
+      idx = idx * cells[k] + i;
+    }
+    return free[idx] != 0;
+  }
 };
 
 class CollisionModel {
@@ -71,6 +116,7 @@ class CollisionModel {
   };
   struct SelfPair {
     int a = -1, b = -1;  ///< slots
+    int table = -1;      ///< index into selfTables(), or -1
   };
 
   /// `group_active`: active joint indices of the group (empty: every active joint).
@@ -91,6 +137,7 @@ class CollisionModel {
   const std::vector<Element>& elements() const { return elements_; }
   const std::vector<Slot>& slots() const { return slots_; }
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
+  const std::vector<SelfPairTable>& selfTables() const { return self_tables_; }
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
   /// Oriented box of obstacle o in the world: rotation, centre, half extents.
   struct Obb {
@@ -116,12 +163,23 @@ class CollisionModel {
   /// X_WL: link poses from kinematics().computeLinkPoses for the state.
   /// With `obb_stage`, element pairs whose oriented boxes a separating-axis test (with a
   /// relative safety margin against rounding) proves apart are skipped too.
+  /// With `q` (the active joint values of the state, may be null) self pairs in a certified
+  /// cell of their table are skipped.
+  template <class SceneNarrow, class SelfNarrow>
+  bool anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
+                    double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
+                    bool obb_stage = true) const;
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
-                    SceneNarrow&& scene, SelfNarrow&& self, bool obb_stage = true) const;
+                    SceneNarrow&& scene, SelfNarrow&& self, bool obb_stage = true) const {
+    return anyCollision(nullptr, X_WL, scene_padding, self_padding, std::forward<SceneNarrow>(scene),
+                        std::forward<SelfNarrow>(self), obb_stage);
+  }
 
  private:
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
+  void buildSelfTables(const CollisionModelOptions& options);
+  double prismaticTravel(const RobotJoint& j) const;
 
   std::shared_ptr<const RobotModel> robot_;
   Kinematics kin_;
@@ -132,6 +190,7 @@ class CollisionModel {
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
+  std::vector<SelfPairTable> self_tables_;
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
   SelfCollisionPairs self_report_;
@@ -175,7 +234,7 @@ inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
 }  // namespace detail
 
 template <class SceneNarrow, class SelfNarrow>
-bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding,
+bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
                                   bool obb_stage) const {
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
@@ -212,6 +271,10 @@ bool CollisionModel::anyCollision(const Eigen::Isometry3d* X_WL, double scene_pa
   }
   // Self pairs.
   for (const SelfPair& p : self_pairs_) {
+    if (q && p.table >= 0) {
+      const SelfPairTable& t = self_tables_[p.table];
+      if (self_padding <= t.padding && t.certifiedFree(q)) continue;
+    }
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
     const double r = sa.radius + sb.radius + self_padding;

@@ -36,7 +36,10 @@ struct CheckerConfig {
   double self_padding = 0.0;
   Options dss_options;
   Algorithm algorithm = Algorithm::kDss;
-  bool obb_stage = true;  ///< oriented-box stage (both checkers)
+  bool obb_stage = true;  ///< oriented-box stage (dss, and fcl-* with the shared sweep)
+  /// fcl-* only: "aabb" (FCL's own world AABBs, as an OMPL/MoveIt + FCL checker does) or
+  /// "shared" (the DSS checker's sphere and oriented-box sweep).
+  std::string fcl_prefilter = "aabb";
 };
 
 struct Problem {

@@ -51,7 +51,7 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
   void setObbStage(bool on) { obb_stage_ = on; }
 
  protected:
-  virtual bool collides(const Eigen::Isometry3d* X_WL) const = 0;
+  virtual bool collides(const double* q, const Eigen::Isometry3d* X_WL) const = 0;
 
   std::shared_ptr<const CollisionModel> model_;
   std::shared_ptr<const GroupStateMap> map_;
@@ -87,7 +87,7 @@ class DssValidityChecker : public ModelValidityChecker {
   const Settings& settings() const { return settings_; }
 
  protected:
-  bool collides(const Eigen::Isometry3d* X_WL) const override;
+  bool collides(const double* q, const Eigen::Isometry3d* X_WL) const override;
 
  private:
   Settings settings_;
