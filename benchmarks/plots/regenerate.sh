@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every narrow-phase figure from fresh benchmark output.
 #
-#   benchmarks/plots/regenerate.sh [--quick] [--long] [--build DIR] [--out DIR]
+#   benchmarks/plots/regenerate.sh [--quick] [--long] [--tradeoff] [--build DIR] [--out DIR]
 #
 # Runs `dss_bench narrowphase` (with the vertex-count sweep) and a `dss_bench failure-rate`
 # density scan, writing CSV/JSON into OUT/data/, then draws the PNGs into OUT with
@@ -11,6 +11,9 @@
 #   --quick      seconds-long runs (what CI calls, so the scripts cannot rot); output goes to
 #                BUILD/figures-quick unless --out is given, so committed figures stay intact
 #   --long       also rerun the 1e8-pair failure-rate run (nice -n 19)
+#   --tradeoff   also rerun the full `dss_bench tradeoff` grid (about 30-40 min on 2 cores;
+#                otherwise the committed OUT/data/tradeoff.csv is drawn; --quick always runs
+#                its seconds-long version)
 #   --build DIR  build folder holding benchmarks/dss_bench (default: $DSS_BUILD_DIR or build)
 #   --out DIR    figure folder (default: docs/figures)
 #
@@ -22,15 +25,17 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 quick=0
 long=0
+tradeoff=0
 build="${DSS_BUILD_DIR:-$root/build}"
 out=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --quick) quick=1 ;;
     --long) long=1 ;;
+    --tradeoff) tradeoff=1 ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
-    -h|--help) sed -n '2,19p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) echo "regenerate.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -97,6 +102,24 @@ fi
   echo "$np_cmd"
   echo "dss_bench failure-rate ${fr_args[*]} --json $(rel "$fr_scan")"
 } > "$data/commands.txt"
+
+# Speed/accuracy trade of checking settings on the shared robots (plot_tradeoff.py). Without
+# ../shared the run skips every robot and writes a header-only CSV; nothing is drawn then.
+to_csv="$data/tradeoff.csv"
+if [[ $quick == 1 ]]; then
+  to_args=(--quick)
+else
+  to_args=(--states 50000 --motions 2000)
+fi
+to_cmd="dss_bench tradeoff ${to_args[*]} --csv $(rel "$to_csv")"
+if [[ $quick == 1 || $tradeoff == 1 ]]; then
+  echo "== $to_cmd"
+  nice -n 5 "$bench" tradeoff "${to_args[@]}" --csv "$(rel "$to_csv")" > "$data/tradeoff.txt"
+  echo "$to_cmd" >> "$data/commands.txt"
+fi
+if [[ -s "$to_csv" ]]; then
+  "$python" "$here/plot_tradeoff.py" --data "$to_csv" --out "$out" --note "$note"
+fi
 
 "$python" "$here/plot_narrowphase.py" --data "$np_csv" --command "$np_cmd" \
   --failure-scan "$fr_scan" "${long_args[@]}" --note "$note" --out "$out" --summary "$data/summary.md"
