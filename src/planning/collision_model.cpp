@@ -155,7 +155,12 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       ++scene_pairs_before_;
       if (options.prune_obstacles) {
         const double r = slots_[s].reach_radius + options.prune_margin;
-        if (std::isfinite(r) && detail::sqDistPointAabb(slots_[s].reach_center_W, boxes[o]) > r * r) continue;
+        const double d2 = detail::sqDistPointAabb(slots_[s].reach_center_W, boxes[o]);
+        if (std::isfinite(r) && d2 > r * r) {
+          // Pruned: the link never comes closer than this to the obstacle.
+          pruned_gap_ = std::min(pruned_gap_, (std::sqrt(d2) - slots_[s].reach_radius) * (1.0 - 1e-9));
+          continue;
+        }
       }
       keep[o] = 1;
       slot_obstacles[s].push_back(int(o));

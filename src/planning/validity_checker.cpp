@@ -1,6 +1,8 @@
 // ModelValidityChecker (mapping, scratch, counters) and DssValidityChecker.
 #include "dss/planning/validity_checker.h"
 
+#include <algorithm>
+
 #include <ompl/base/SpaceInformation.h>
 
 namespace dss {
@@ -95,9 +97,41 @@ DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si
                            settings.self_padding),
       settings_(settings) {
   obb_stage_ = settings.obb_stage;
+  specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
 }
 
 bool DssValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL) const {
+  return collidesPadded(q, X_WL, scene_padding_, self_padding_);
+}
+
+double DssValidityChecker::clearance(const ompl::base::State* state) const {
+  Scratch& s = scratch();
+  s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
+  if (!map_->toJoints(state, s.q.data())) return 0.0;
+  model_->kinematics().computeLinkPoses(s.q.data(), s.X_WL.data());
+  const double* q = s.q.data();
+  const Eigen::Isometry3d* X = s.X_WL.data();
+  auto apart = [&](double r) { return !collidesPadded(q, X, scene_padding_ + r, self_padding_ + r); };
+  if (!apart(0.0)) return 0.0;
+  const double tol = settings_.clearance_tolerance > 0 ? settings_.clearance_tolerance : 1e-3;
+  // Obstacles pruned from the model are at least prunedClearance() away: cap there.
+  const double cap = std::max(0.0, std::min(settings_.clearance_max, model_->prunedClearance() - scene_padding_));
+  // Invariant: apart(lo) proven, apart(hi) not (or hi is the cap).
+  double lo = 0.0, hi = std::min(tol, cap);
+  while (apart(hi)) {
+    lo = hi;
+    if (hi >= cap) return cap;
+    hi = std::min(2.0 * hi, cap);
+  }
+  while (hi - lo > tol) {
+    const double mid = 0.5 * (lo + hi);
+    (apart(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+bool DssValidityChecker::collidesPadded(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
+                                        double self_padding) const {
   const CollisionModel& m = *model_;
   const auto& elements = m.elements();
   const auto& obstacles = m.scene().obstacles;
@@ -109,15 +143,15 @@ bool DssValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL
     return r.intersect;
   };
   const bool hit = m.anyCollision(
-      q, X_WL, scene_padding_, self_padding_,
+      q, X_WL, scene_padding, self_padding,
       [&](int e, const Eigen::Isometry3d& X_WS, int o) {
         const Obstacle& ob = obstacles[o];
         return decideResult(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO,
-                                      settings_.options, scene_padding_, settings_.algorithm));
+                                      settings_.options, scene_padding, settings_.algorithm));
       },
       [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
         return decideResult(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
-                                      settings_.options, self_padding_, settings_.algorithm));
+                                      settings_.options, self_padding, settings_.algorithm));
       },
       obb_stage_);
   slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);

@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -150,6 +151,9 @@ class CollisionModel {
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 
   std::size_t obstaclesBefore() const { return obstacles_before_; }
+  /// A lower bound on the distance of any moving link to any obstacle pruned for it
+  /// (infinity when none was pruned): clearance never exceeds what the pruning guarantees.
+  double prunedClearance() const { return pruned_gap_; }
   std::size_t scenePairs() const { return scene_pairs_; }
   std::size_t scenePairsBefore() const { return scene_pairs_before_; }
   /// e.g. "kept 12 of 40 obstacles, 60 of 400 robot-scene link pairs, 21 of 55 self link pairs"
@@ -195,6 +199,7 @@ class CollisionModel {
   std::vector<Obb> obbs_;
   SelfCollisionPairs self_report_;
   std::size_t obstacles_before_ = 0;
+  double pruned_gap_ = std::numeric_limits<double>::infinity();
   std::size_t scene_pairs_ = 0;
   std::size_t scene_pairs_before_ = 0;
 };

@@ -6,8 +6,11 @@
 // warmed up; the only shared mutable state is a set of atomic counters), then robot vs scene
 // and self pairs, stopping at the first collision. Both checkers are const and thread-safe.
 //
-// clearance(): not computed (specs_.clearanceComputationType stays NONE); DSS is a decision
-// procedure, and a lower bound is future work.
+// clearance() (DSS checker): a guaranteed lower bound on the distance from the robot to the
+// scene and between checked self pairs (beyond the paddings), within a tolerance: the largest
+// extra padding r, found by doubling then bisection, for which exact DSS proves every pair
+// farther apart than its padding + r. specs_.clearanceComputationType is BOUNDED_APPROXIMATE
+// (OMPL: "a lower bound on clearance is computed"). The FCL checker computes none (NONE).
 #pragma once
 
 #include <atomic>
@@ -75,6 +78,10 @@ struct DssCheckerSettings {
   double self_padding = 0.0;
   /// Oriented-box separating-axis stage of the shared sweep (CollisionModel::anyCollision).
   bool obb_stage = true;
+  /// clearance(): the returned lower bound is within this of the true clearance (metres),
+  /// up to clearance_max (returned when every pair is at least that far apart).
+  double clearance_tolerance = 1e-3;
+  double clearance_max = 10.0;
 };
 
 class DssValidityChecker : public ModelValidityChecker {
@@ -85,11 +92,16 @@ class DssValidityChecker : public ModelValidityChecker {
                      std::shared_ptr<const GroupStateMap> map, const Settings& settings = {});
   std::string name() const override { return "dss"; }
   const Settings& settings() const { return settings_; }
+  /// 0 for an invalid state (or NaN/Inf/out of bounds), else a lower bound on the clearance
+  /// within settings().clearance_tolerance.
+  double clearance(const ompl::base::State* state) const override;
 
  protected:
   bool collides(const double* q, const Eigen::Isometry3d* X_WL) const override;
 
  private:
+  bool collidesPadded(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
+                      double self_padding) const;
   Settings settings_;
 };
 
