@@ -11,6 +11,8 @@ writes, per robot found in it:
                          Pareto front (no other setting both cheaper and more accurate) are
                          joined by a line.
 
+With --summary FILE, also writes the per-robot tables as Markdown (what docs/tradeoff.md shows).
+
 Rates: missed = missed / truth-colliding, false alarms = false alarms / truth-free (percent;
 a symlog axis so that 0 stays visible). The command that produced the data is in the footer.
 Uses the Agg backend. Exits non-zero when the CSV is missing or has no rows.
@@ -143,11 +145,57 @@ def plot_robot(robot, rows, out, command, note):
     return path
 
 
+def pct(k, n):
+    if n <= 0:
+        return "-"
+    v = 100.0 * k / n
+    return "0" if k == 0 else (f"{v:.3f} %" if v < 0.1 else f"{v:.2f} %")
+
+
+def summary(rows, path):
+    robots = []
+    for r in rows:
+        if r["robot"] not in robots:
+            robots.append(r["robot"])
+    out = []
+    for robot in robots:
+        rr = [r for r in rows if r["robot"] == robot]
+        r0 = rr[0]
+        ns, nsc = int(r0["states"]), int(r0["truth_colliding_states"])
+        nm, nmc = int(r0["motions"]), int(r0["truth_colliding_motions"])
+        out.append(f"### {ROBOT_TITLE.get(robot, robot)}\n")
+        out.append(f"{ns} states ({nsc} colliding in the truth), {nm} motions ({nmc} colliding), "
+                   f"{r0['scenes']} scenes; `{r0['command']}`\n")
+        out.append("| setting | model | us/state | missed | false alarms | cap hits | us/motion | missed (motions) "
+                   "| false alarms (motions) | plans solved | median plan ms (CPU) | solved paths colliding in truth |")
+        out.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for r in rr:
+            st, sc = int(r["states"]), int(r["truth_colliding_states"])
+            mo, mc = int(r["motions"]), int(r["truth_colliding_motions"])
+            miss = f"{r['state_missed']} ({pct(int(r['state_missed']), sc)})"
+            if int(r["fcl_gap_claims"] or 0):
+                miss += f" [{r['fcl_gap_claims']} FCL at a certified gap]"
+            fa = f"{r['state_false_alarms']} ({pct(int(r['state_false_alarms']), st - sc)})"
+            mm = f"{r['motion_missed']} ({pct(int(r['motion_missed']), mc)})"
+            mf = f"{r['motion_false_alarms']} ({pct(int(r['motion_false_alarms']), mo - mc)})"
+            plan = "-" if not r["plan_problems"] else f"{r['plan_solved']}/{r['plan_problems']}"
+            pv = float(r["plan_median_cpu_ms"] or "nan")
+            pms = "-" if not r["plan_problems"] else (f"{pv:.1f}" if math.isfinite(pv) else "failed (median)")
+            bad = "-" if not r["plan_problems"] else r["plan_paths_truth_colliding"]
+            model = os.path.basename(r["model"])
+            out.append(f"| {r['setting']} | {model} | {float(r['us_per_state']):.2f} | {miss} | {fa} | {r['state_cap_hits']} "
+                       f"| {float(r['us_per_motion']):.1f} | {mm} | {mf} | {plan} | {pms} | {bad} |")
+        out.append("")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--data", required=True, help="CSV from dss_bench tradeoff --csv")
     ap.add_argument("--out", required=True, help="folder for the PNGs")
     ap.add_argument("--note", default="", help="run note for the footer")
+    ap.add_argument("--summary", default="", help="also write the tables as Markdown to this file")
     args = ap.parse_args()
     if not os.path.isfile(args.data):
         print(f"plot_tradeoff.py: {args.data}: not found", file=sys.stderr)
@@ -166,6 +214,9 @@ def main():
     for robot in robots:
         rr = [r for r in rows if r["robot"] == robot]
         print(plot_robot(robot, rr, args.out, rr[0]["command"], args.note))
+    if args.summary:
+        summary(rows, args.summary)
+        print(args.summary)
     return 0
 
 

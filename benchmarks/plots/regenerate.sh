@@ -118,7 +118,7 @@ if [[ $quick == 1 || $tradeoff == 1 ]]; then
   echo "$to_cmd" >> "$data/commands.txt"
 fi
 if [[ -s "$to_csv" ]]; then
-  "$python" "$here/plot_tradeoff.py" --data "$to_csv" --out "$out" --note "$note"
+  "$python" "$here/plot_tradeoff.py" --data "$to_csv" --out "$out" --note "$note" --summary "$data/tradeoff_summary.md"
 fi
 
 "$python" "$here/plot_narrowphase.py" --data "$np_csv" --command "$np_cmd" \
