@@ -342,20 +342,37 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
       }
       kin_.computeLinkPoses(q.data(), X.data());
       const double pad = t.padding + moved * (1.0 + 1e-9) + 1e-12;
+      auto mark = [&](unsigned char value) {
+        for (int i = i0; i < i1; ++i)
+          for (int j = j0; j < j1; ++j) t.free[std::size_t(i) * t.cells[1] + j] = value;
+      };
+      // Free: every element pair farther apart than pad.
       bool free = true;
       for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements && free; ++ea)
         for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements && free; ++eb) {
           const CollisionElement& A = *elements_[ea].source;
           const CollisionElement& B = *elements_[eb].source;
-          const Result r = intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad,
-                                     Algorithm::kDss);
-          free = !r.intersect;
+          free = !intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad,
+                            Algorithm::kDss).intersect;
         }
-      if (free) {
-        for (int i = i0; i < i1; ++i)
-          for (int j = j0; j < j1; ++j) t.free[std::size_t(i) * t.cells[1] + j] = 1;
-        return;
-      }
+      if (free) return mark(SelfPairTable::kFree);
+      // Colliding: some element pair intersects under the six translations by sqrt(3) L (and
+      // a 1e-9 margin for the rounding of the poses) along the axes, hence under any motion
+      // within the cell. (At a self padding above the table's, colliding stays colliding.)
+      const double reach = std::sqrt(3.0) * (moved * (1.0 + 1e-9) + 1e-9);
+      for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea)
+        for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
+          const CollisionElement& A = *elements_[ea].source;
+          const CollisionElement& B = *elements_[eb].source;
+          const Eigen::Isometry3d XA = X[sa.link] * A.X_LS;
+          bool all = true;
+          for (int axis = 0; axis < 6 && all; ++axis) {
+            Eigen::Isometry3d XB = X[sb.link] * B.X_LS;
+            XB.translation()[axis / 2] += (axis % 2 ? -reach : reach);
+            all = intersect(A.shape, XA, B.shape, XB, exact, 0.0, Algorithm::kDss).intersect;
+          }
+          if (all) return mark(SelfPairTable::kColliding);
+        }
       if (i1 - i0 <= 1 && j1 - j0 <= 1) return;
       const int im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1;
       const int jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
@@ -368,8 +385,12 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
     };
     certify(certify, 0, t.cells[0], 0, t.cells[1]);
     q = held_;
-    for (unsigned char c : t.free) t.num_free += c;
-    if (t.num_free == 0) continue;
+    for (unsigned char c : t.free) {
+      t.num_free += c == SelfPairTable::kFree;
+      t.num_colliding += c == SelfPairTable::kColliding;
+    }
+    if (t.num_free == 0 && t.num_colliding == 0) continue;
+    table_pairs_.push_back(int(&pair - self_pairs_.data()));
     pair.table = int(self_tables_.size());
     self_tables_.push_back(std::move(t));
   }
@@ -429,10 +450,10 @@ std::string CollisionModel::summary() const {
      << self_pairs_.size() << " of " << self_report_.all_pairs << " self link pairs ("
      << moving << " of " << slots_.size() << " links with geometry move)";
   if (!self_tables_.empty()) {
-    std::size_t cells = 0, free = 0;
-    for (const auto& t : self_tables_) cells += t.free.size(), free += t.num_free;
-    os << ", " << self_tables_.size() << " self-pair tables (" << free << " of " << cells
-       << " cells certified free)";
+    std::size_t cells = 0, free = 0, colliding = 0;
+    for (const auto& t : self_tables_) cells += t.free.size(), free += t.num_free, colliding += t.num_colliding;
+    os << ", " << self_tables_.size() << " self-pair tables (of " << cells << " cells " << free
+       << " certified free, " << colliding << " colliding)";
   }
   return os.str();
 }

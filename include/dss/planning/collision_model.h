@@ -19,14 +19,18 @@
 //
 // Self-pair tables: when the relative pose of two links depends on one or two joint values
 // only (e.g. the Panda's link5 and link7: joints 6 and 7), the joint range is cut into cells
-// and every cell that is provably free for every value inside it is marked once, at build
-// time: the pose at the cell centre is decided by exact DSS with the padding grown by a bound
-// on how far any point of one link can move relative to the other within the cell (the
-// joint's half-width times the distance of the geometry from the joint; a prismatic joint
-// moves by its half-width). Cells are certified coarse to fine (a free block marks all its
-// cells). At query time a certified cell skips the pair: a table lookup instead of a narrow
-// phase. Any other cell, or a value outside the range, takes the normal path, so the tables
-// never change an answer, only its cost.
+// and each cell is decided once, at build time, for every value inside it. Within a cell no
+// point of one link moves more than L relative to the other (the joint's half-width times
+// the distance of the geometry from the joint; a prismatic joint moves by its half-width).
+// "Free": exact DSS proves the links at the cell centre farther apart than padding + L.
+// "Colliding": the links at the centre still intersect when one is translated to each of the
+// six points at distance sqrt(3) L along the axes, so their Minkowski difference holds the
+// octahedron of those points and with it the ball of radius L: every pose in the cell
+// intersects (h_{A-B(q)}(d) >= h_{A-B(c)}(d) - L >= 0 for every unit d). Cells are decided
+// coarse to fine (a decided block decides all its cells). At query time a decided cell
+// answers the pair without a narrow phase (colliding cells are looked up before anything
+// else, so such a state is rejected at once); any other cell, or a value outside the range,
+// takes the normal path. The tables never change an answer, only its cost.
 #pragma once
 
 #include <cmath>
@@ -55,36 +59,42 @@ struct CollisionModelOptions {
   bool exclude_rigid = true;
   /// Self-pair tables (see above): cells per joint for pairs moved by two joints (0: no
   /// tables), and for pairs moved by one joint.
-  int self_table_cells_2d = 64;
+  int self_table_cells_2d = 128;
   int self_table_cells_1d = 1024;
   /// The self padding the tables certify: a checker uses them when its own self padding is
   /// at most this.
   double self_table_padding = 0.0;
 };
 
-/// Certified-free cells of a self pair over the one or two joint values it depends on.
+/// Decided cells of a self pair over the one or two joint values it depends on.
 struct SelfPairTable {
+  enum Cell : unsigned char { kUnknown = 0, kFree = 1, kColliding = 2 };
   int num_vars = 0;
   int var[2] = {-1, -1};        ///< active joint indices
   double lo[2] = {0, 0}, hi[2] = {0, 0}, inv_width[2] = {0, 0};
   bool wrap[2] = {false, false};  ///< continuous joint: the value is taken modulo 2 pi
   int cells[2] = {1, 1};
   double padding = 0.0;
-  std::vector<unsigned char> free;  ///< cells[0] x cells[1], row-major
+  std::vector<unsigned char> free;  ///< Cell per cell, cells[0] x cells[1], row-major
   std::size_t num_free = 0;
+  std::size_t num_colliding = 0;
 
   /// True when the cell of q is certified free (false outside the range, or for NaN).
-  bool certifiedFree(const double* q) const {
+  bool certifiedFree(const double* q) const { return cell(q) == kFree; }
+  /// True when the cell of q is certified colliding (at zero padding, so at any padding).
+  bool certifiedColliding(const double* q) const { return cell(q) == kColliding; }
+  /// The decided state of the cell of q (kUnknown outside the range, or for NaN).
+  Cell cell(const double* q) const {
     int idx = 0;
     for (int k = 0; k < num_vars; ++k) {
       double v = q[var[k]];
       if (wrap[k]) v -= 6.283185307179586 * std::floor((v + 3.141592653589793) / 6.283185307179586);
-      if (!(v >= lo[k] && v <= hi[k])) return false;
+      if (!(v >= lo[k] && v <= hi[k])) return kUnknown;
       int i = static_cast<int>((v - lo[k]) * inv_width[k]);
       if (i >= cells[k]) i = cells[k] - 1;
       idx = idx * cells[k] + i;
     }
-    return free[idx] != 0;
+    return static_cast<Cell>(free[idx]);
   }
 };
 
@@ -195,6 +205,7 @@ class CollisionModel {
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
   std::vector<SelfPairTable> self_tables_;
+  std::vector<int> table_pairs_;  ///< self pairs with a table (indices into self_pairs_)
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
   SelfCollisionPairs self_report_;
@@ -244,6 +255,12 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
                                   bool obb_stage) const {
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
   // after the first call with a model this size).
+  // Self pairs whose table says "colliding" for this state: rejected before anything else.
+  if (q && self_padding >= 0.0)
+    for (int k : table_pairs_) {
+      const SelfPairTable& t = self_tables_[self_pairs_[k].table];
+      if (self_padding >= t.padding && t.certifiedColliding(q)) return true;
+    }
   thread_local std::vector<Eigen::Vector3d> centers;
   if (centers.size() < slots_.size()) centers.resize(slots_.size());
   for (std::size_t k = 0; k < slots_.size(); ++k) centers[k] = X_WL[slots_[k].link] * slots_[k].center_L;
@@ -278,7 +295,9 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   for (const SelfPair& p : self_pairs_) {
     if (q && p.table >= 0) {
       const SelfPairTable& t = self_tables_[p.table];
-      if (self_padding <= t.padding && t.certifiedFree(q)) continue;
+      const SelfPairTable::Cell c = t.cell(q);
+      if (c == SelfPairTable::kFree && self_padding <= t.padding) continue;
+      if (c == SelfPairTable::kColliding && self_padding >= t.padding) return true;
     }
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
