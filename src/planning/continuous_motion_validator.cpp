@@ -1,4 +1,5 @@
-// ContinuousMotionValidator: padded swept hulls per link, halving until every pair is cleared.
+// ContinuousMotionValidator: padded swept hulls per element, halving each sub-motion and
+// re-testing only the units its parent could not clear.
 #include "dss/planning/continuous_motion_validator.h"
 
 #include <cmath>
@@ -13,9 +14,15 @@ namespace dss {
 
 namespace {
 
+struct Interval {
+  double ta, tb;
+  std::size_t begin, end;  // its units: Scratch::work[begin, end)
+};
 struct Scratch {
   std::vector<Eigen::Isometry3d> XA, XB;
-  std::vector<double> pad;
+  std::vector<double> pad, q0, q1, qa, qb;
+  std::vector<int> work;  // unit indices, a stack of lists (see check())
+  std::vector<Interval> stack;
 };
 Scratch& scratch() {
   thread_local Scratch s;
@@ -93,87 +100,113 @@ ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInfo
       below += travel + j.X_PJ.translation().norm();
     }
   }
+  // Units in the order of the state sweep: robot vs scene, then self pairs.
+  for (const auto& s : m.slots()) {
+    if (!s.moves) continue;
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
+      for (int o : s.obstacles) units_.push_back({e, o, false});
+  }
+  for (const auto& p : m.selfPairs()) {
+    const auto& sa = m.slots()[p.a];
+    const auto& sb = m.slots()[p.b];
+    for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea)
+      for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) units_.push_back({ea, eb, true});
+  }
 }
 
-bool ContinuousMotionValidator::clear(const double* qa, const double* qb) const {
-  sub_motions_.fetch_add(1, std::memory_order_relaxed);
+void ContinuousMotionValidator::paddings(const double* qa, const double* qb, double* pad) const {
+  for (std::size_t k = 0; k < chains_.size(); ++k) {
+    double len = 0.0, turn = 0.0;  // V_L and W_L of the header
+    for (const auto& t : chains_[k]) {
+      const double dq = std::abs(t.multiplier * (qb[t.active] - qa[t.active]));
+      if (t.radius < 0) {
+        len += dq;
+      } else {
+        len += dq * t.radius;
+        turn += dq;
+      }
+    }
+    pad[k] = 0.5 * len * std::min(1.0, turn) * (1.0 + 1e-9) + (len > 0 ? 1e-12 : 0.0);
+  }
+}
+
+bool ContinuousMotionValidator::unitClear(const Unit& u, const double* pad) const {
   const CollisionModel& m = checker_->model();
   const auto& set = checker_->settings();
+  const Scratch& sc = scratch();
+  const auto& el = m.elements();
+  const auto& ea = el[u.a];
+  const Eigen::Isometry3d& XA0 = sc.XA[ea.link];
+  const Eigen::Isometry3d& XA1 = sc.XB[ea.link];
+  const Eigen::Vector3d a0 = XA0 * ea.center_L, a1 = XA1 * ea.center_L;
+  if (!u.self) {
+    const double p = pad[ea.slot] + set.scene_padding;
+    const double r = 0.5 * (a1 - a0).norm() + ea.radius + p;
+    if (detail::sqDistPointAabb(0.5 * (a0 + a1), m.obstacleBoxes()[u.b]) > r * r) return true;
+    unit_tests_.fetch_add(1, std::memory_order_relaxed);
+    const Obstacle& o = m.scene().obstacles[u.b];
+    return !sweptVsPosed(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, o.shape, o.X_WO,
+                         set.options);
+  }
+  const auto& eb = el[u.b];
+  const Eigen::Isometry3d& XB0 = sc.XA[eb.link];
+  const Eigen::Isometry3d& XB1 = sc.XB[eb.link];
+  const Eigen::Vector3d b0 = XB0 * eb.center_L, b1 = XB1 * eb.center_L;
+  const double p = pad[ea.slot] + pad[eb.slot] + set.self_padding;
+  const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + ea.radius + eb.radius + p;
+  if ((0.5 * (a0 + a1) - 0.5 * (b0 + b1)).squaredNorm() > r * r) return true;
+  unit_tests_.fetch_add(1, std::memory_order_relaxed);
+  return !sweptVsSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, eb.source->shape,
+                       XB0 * eb.source->X_LS, XB1 * eb.source->X_LS, set.options);
+}
+
+bool ContinuousMotionValidator::check(const double* q0, const double* q1, double* last) const {
+  // Depth-first halving, left half first. `work` is a stack of unit lists: an interval owns
+  // work[begin, end), written by its parent; the units it fails to clear are appended after
+  // `end` and shared by its two halves. When an interval is popped, everything after its
+  // own list belongs to intervals already finished, so the list is cut back to `end` first.
+  const CollisionModel& m = checker_->model();
+  const std::size_t n = m.robot().numActiveJoints();
   Scratch& sc = scratch();
   const std::size_t nl = m.robot().links.size();
   if (sc.XA.size() < nl) sc.XA.resize(nl), sc.XB.resize(nl);
   if (sc.pad.size() < m.slots().size()) sc.pad.resize(m.slots().size());
-  m.kinematics().computeLinkPoses(qa, sc.XA.data());
-  m.kinematics().computeLinkPoses(qb, sc.XB.data());
-  for (std::size_t k = 0; k < m.slots().size(); ++k) {
-    double len = 0.0;
-    for (const auto& t : chains_[k]) {
-      const double dq = std::abs(t.multiplier * (qb[t.active] - qa[t.active]));
-      len += t.radius < 0 ? dq : dq * t.radius;
-    }
-    sc.pad[k] = 0.5 * len * (1.0 + 1e-9) + (len > 0 ? 1e-12 : 0.0);
-  }
-  const auto& el = m.elements();
-  const auto& obstacles = m.scene().obstacles;
-  // Robot vs scene.
-  for (std::size_t k = 0; k < m.slots().size(); ++k) {
-    const auto& s = m.slots()[k];
-    if (s.obstacles.empty()) continue;
-    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-      const Eigen::Isometry3d A0 = sc.XA[s.link] * el[e].source->X_LS;
-      const Eigen::Isometry3d A1 = sc.XB[s.link] * el[e].source->X_LS;
-      const Eigen::Vector3d c0 = sc.XA[s.link] * el[e].center_L, c1 = sc.XB[s.link] * el[e].center_L;
-      const double pad = sc.pad[k] + set.scene_padding;
-      const double r = 0.5 * (c1 - c0).norm() + el[e].radius + pad;
-      for (int o : s.obstacles) {
-        if (detail::sqDistPointAabb(0.5 * (c0 + c1), m.obstacleBoxes()[o]) > r * r) continue;
-        if (sweptVsPosed(el[e].source->shape, A0, A1, pad, obstacles[o].shape, obstacles[o].X_WO, set.options))
-          return false;
-      }
-    }
-  }
-  // Self pairs (both swept).
-  for (const auto& p : m.selfPairs()) {
-    const auto& sa = m.slots()[p.a];
-    const auto& sb = m.slots()[p.b];
-    const double pad = sc.pad[p.a] + sc.pad[p.b] + set.self_padding;
-    for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
-      const Eigen::Vector3d a0 = sc.XA[sa.link] * el[ea].center_L, a1 = sc.XB[sa.link] * el[ea].center_L;
-      for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
-        const Eigen::Vector3d b0 = sc.XA[sb.link] * el[eb].center_L, b1 = sc.XB[sb.link] * el[eb].center_L;
-        const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + el[ea].radius + el[eb].radius + pad;
-        if ((0.5 * (a0 + a1) - 0.5 * (b0 + b1)).squaredNorm() > r * r) continue;
-        if (sweptVsSwept(el[ea].source->shape, sc.XA[sa.link] * el[ea].source->X_LS,
-                         sc.XB[sa.link] * el[ea].source->X_LS, pad, el[eb].source->shape,
-                         sc.XA[sb.link] * el[eb].source->X_LS, sc.XB[sb.link] * el[eb].source->X_LS,
-                         set.options))
-          return false;
-      }
-    }
-  }
-  return true;
-}
-
-bool ContinuousMotionValidator::check(const double* q0, const double* q1, double* last) const {
-  // Depth-first halving, left half first, with an explicit stack of [ta, tb] intervals.
-  const std::size_t n = checker_->model().robot().numActiveJoints();
-  std::vector<double> qa(n), qb(n);  // small; motions are far rarer than states
-  std::vector<std::pair<double, double>> stack{{0.0, 1.0}};
-  while (!stack.empty()) {
-    const auto [ta, tb] = stack.back();
-    stack.pop_back();
+  if (sc.qa.size() < n) sc.qa.resize(n), sc.qb.resize(n);
+  sc.work.resize(units_.size());
+  for (std::size_t u = 0; u < units_.size(); ++u) sc.work[u] = static_cast<int>(u);
+  sc.stack.clear();
+  sc.stack.push_back({0.0, 1.0, 0, units_.size()});
+  double* qa = sc.qa.data();
+  double* qb = sc.qb.data();
+  while (!sc.stack.empty()) {
+    const Interval iv = sc.stack.back();
+    sc.stack.pop_back();
+    sc.work.resize(iv.end);
+    sub_motions_.fetch_add(1, std::memory_order_relaxed);
     for (std::size_t i = 0; i < n; ++i) {
-      qa[i] = q0[i] + ta * (q1[i] - q0[i]);
-      qb[i] = q0[i] + tb * (q1[i] - q0[i]);
+      qa[i] = q0[i] + iv.ta * (q1[i] - q0[i]);
+      qb[i] = q0[i] + iv.tb * (q1[i] - q0[i]);
     }
-    if (clear(qa.data(), qb.data())) continue;
-    if (tb - ta <= min_fraction_) {
-      *last = ta;
+    m.kinematics().computeLinkPoses(qa, sc.XA.data());
+    m.kinematics().computeLinkPoses(qb, sc.XB.data());
+    paddings(qa, qb, sc.pad.data());
+    for (std::size_t w = iv.begin; w < iv.end; ++w) {
+      const int u = sc.work[w];
+      if (!unitClear(units_[u], sc.pad.data())) sc.work.push_back(u);
+    }
+    if (sc.work.size() == iv.end) continue;  // every unit cleared over [ta, tb]
+    if (iv.tb - iv.ta <= min_fraction_) {
+      *last = iv.ta;
       return false;
     }
-    const double tm = 0.5 * (ta + tb);
-    stack.push_back({tm, tb});
-    stack.push_back({ta, tm});
+    const double tm = 0.5 * (iv.ta + iv.tb);
+    for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
+    if (!checker_->isValidJoints(qa)) {  // a colliding state on the motion: done
+      *last = iv.ta;
+      return false;
+    }
+    sc.stack.push_back({tm, iv.tb, iv.end, sc.work.size()});
+    sc.stack.push_back({iv.ta, tm, iv.end, sc.work.size()});
   }
   return true;
 }
@@ -187,9 +220,12 @@ bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1, const o
                                             std::pair<ompl::base::State*, double>& lastValid) const {
   const GroupStateMap& map = checker_->stateMap();
   const std::size_t n = checker_->model().robot().numActiveJoints();
-  std::vector<double> q0(n), q1(n);
+  Scratch& sc = scratch();
+  if (sc.q0.size() < n) sc.q0.resize(n), sc.q1.resize(n);
+  double* q0 = sc.q0.data();
+  double* q1 = sc.q1.data();
   double last = 0.0;
-  bool ok = map.toJoints(s1, q0.data()) && map.toJoints(s2, q1.data());
+  bool ok = map.toJoints(s1, q0) && map.toJoints(s2, q1);
   if (ok) {
     // Continuous joints: move the short way, as OMPL's SO2 interpolation does.
     for (std::size_t i = 0; i < map.dimension(); ++i) {
@@ -198,7 +234,7 @@ bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1, const o
       if (j.type == JointType::kContinuous || !j.limits.has_position_limits)
         q1[a] = q0[a] + std::remainder(q1[a] - q0[a], 2.0 * M_PI);
     }
-    ok = check(q0.data(), q1.data(), &last);
+    ok = check(q0, q1, &last);
   }
   if (ok) {
     ++valid_;

@@ -37,12 +37,16 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
     ob::ScopedState<> start(p.si->getStateSpace()), goal(p.si->getStateSpace());
     // The shelf request's goal sits deep in the shelf, out of (unidirectional) RRT's reach in
     // seconds; the goals here are seeded random valid states that the straight motion from
-    // the start cannot reach, so the planner has to go around an obstacle: 8 problems in a row,
-    // so that both threads check many states concurrently.
+    // the start cannot reach, so the planner has to go around an obstacle, but that a
+    // two-motion path through a seeded random via state does reach (so that a solution exists
+    // and is found in well under the time limit; pRRT's threads make its runs
+    // nondeterministic): 8 problems in a row, so that both threads check many states
+    // concurrently.
     const auto g0 = p.map->groupValues(req.startState());
     p.map->fromGroupValues(g0.data(), start.get());
     std::mt19937_64 rng(21);
-    std::vector<double> g1(g0.size());
+    std::vector<double> g1(g0.size()), via_g(g0.size());
+    ob::ScopedState<> via(p.si->getStateSpace());
     int bad = 0, motions_rejected = 0;
     for (int problem = 0; problem < 8; ++problem) {
       for (int tries = 0;; ++tries) {
@@ -50,7 +54,16 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
         for (std::size_t i = 0; i < g1.size(); ++i)
           g1[i] = std::uniform_real_distribution<double>(p.map->lower(i), p.map->upper(i))(rng);
         p.map->fromGroupValues(g1.data(), goal.get());
-        if (checker->isValid(goal.get()) && !p.si->checkMotion(start.get(), goal.get())) break;
+        if (!checker->isValid(goal.get()) || p.si->checkMotion(start.get(), goal.get())) continue;
+        bool reachable = false;
+        for (int v = 0; v < 200 && !reachable; ++v) {
+          for (std::size_t i = 0; i < g1.size(); ++i)
+            via_g[i] = std::uniform_real_distribution<double>(p.map->lower(i), p.map->upper(i))(rng);
+          p.map->fromGroupValues(via_g.data(), via.get());
+          reachable = checker->isValid(via.get()) && p.si->checkMotion(start.get(), via.get()) &&
+                      p.si->checkMotion(via.get(), goal.get());
+        }
+        if (reachable) break;
       }
       ss.clear();
       ss.setStartAndGoalStates(start, goal);

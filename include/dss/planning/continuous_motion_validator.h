@@ -1,17 +1,23 @@
 // A conservative continuous motion validator: no collision between two states along the
 // straight joint-space motion can be missed.
 //
-// Over a sub-motion [t0, t1], every point of link L travels a path no longer than
-//   len_L = sum over moving joints j above L of |dq_j| * R_jL   (R_jL: a bound on the
-//           distance of L's geometry from joint j's origin; prismatic joints add |dq_j|),
-// so each point at time t lies within len_L / 2 of its position at t0 or at t1. Hence every
-// intermediate pose of an element lies inside conv(X_t0(S) U X_t1(S)) grown by len_L / 2
-// (a padded SweptHull, decided by DSS). A pair is cleared for the whole sub-motion when those
-// bounds are disjoint (for self pairs both links are swept, ignoring the time correlation,
-// which is conservative). Otherwise the sub-motion is halved, left half first, down to a
-// minimum fraction; a pair still not cleared there makes the motion invalid. OMPL's
-// lastValid contract: the last state known valid (start of the first failing leaf) and its
-// fraction of the motion.
+// Over a sub-motion [t0, t1], every point p of link L moves along a path p(t) with
+//   |p'|  <= V_L = sum over moving joints j above L of |dq_j| * R_jL + sum of prismatic |dq_j|
+//   |p''| <= 4 W_L V_L,   W_L = sum of revolute |dq_j| above L   (dq over the sub-motion, t in [0, 1])
+// (R_jL: a bound on the distance of L's geometry from joint j's origin). So p(t) lies within
+//   pad_L = min(V_L / 2, W_L V_L / 2)
+// of the chord (1 - t) p(t0) + t p(t1) (the linear-interpolation error bound |p''| / 8 for the
+// quadratic term; the nearer end point for the linear one), and every intermediate pose of an
+// element lies inside conv(X_t0(S) U X_t1(S)) grown by pad_L: a padded SweptHull, decided by
+// DSS. The quadratic term makes the bound shrink four-fold per halving once W_L < 1 rad.
+//
+// Work is kept per unit (element vs obstacle, element vs element of a self pair): the whole
+// motion tests every unit; a sub-motion tests only the units that its parent could not clear.
+// A sub-motion with units left is halved, left half first, after checking its midpoint state:
+// a colliding midpoint ends the search at once (the motion is invalid). A unit still not
+// cleared at the minimum fraction makes the motion invalid. For self pairs both links are
+// swept, ignoring the time correlation, which is conservative. OMPL's lastValid contract: the
+// last state known valid (start of the first failing sub-motion) and its fraction.
 #pragma once
 
 #include <atomic>
@@ -36,11 +42,25 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
+  /// Sub-motions examined (the whole motion counts as one).
   std::uint64_t subMotions() const { return sub_motions_.load(); }
+  /// Swept narrow-phase tests run.
+  std::uint64_t unitTests() const { return unit_tests_.load(); }
+
+  /// The padding of each model slot (CollisionModel::slots()) over the straight motion from
+  /// joint vector qa to qb (all active joints): every point of the slot's geometry stays
+  /// within pad[k] of the chord between its positions at qa and qb. Zero for fixed slots.
+  void paddings(const double* qa, const double* qb, double* pad) const;
 
  private:
   bool check(const double* q0, const double* q1, double* last_valid_fraction) const;
-  bool clear(const double* qa, const double* qb) const;
+  // A unit: element `a` (model element index) against obstacle `b` (self == false) or
+  // against element `b` (self == true).
+  struct Unit {
+    int a = -1, b = -1;
+    bool self = false;
+  };
+  bool unitClear(const Unit& u, const double* pad) const;
 
   std::shared_ptr<const DssValidityChecker> checker_;
   double min_fraction_;
@@ -48,10 +68,11 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
   struct ChainTerm {
     int active;          // active joint index read
     double multiplier;   // mimic multiplier (1 for active joints)
-    double radius;       // R_jL (revolute) or 1 (prismatic)
+    double radius;       // R_jL (revolute) or -1 (prismatic)
   };
   std::vector<std::vector<ChainTerm>> chains_;
-  mutable std::atomic<std::uint64_t> sub_motions_{0};
+  std::vector<Unit> units_;  // every unit of the model, in sweep order
+  mutable std::atomic<std::uint64_t> sub_motions_{0}, unit_tests_{0};
 };
 
 }  // namespace dss
