@@ -235,7 +235,10 @@ int run(int argc, char** argv) {
     while (std::getline(is, c, ',')) names_list.push_back(c);
   }
   if (repeat <= 0) repeat = st.size() >= 10000 ? 5 : st.size() >= 1000 ? 11 : 31;
-  std::vector<char> first;
+  // Every checker is built first; then the repetitions run interleaved (checker 1, 2, ...,
+  // then again), after one untimed warm-up pass each, so that a slow phase of a shared machine
+  // hits every checker alike and the ratios of medians stay meaningful.
+  std::vector<std::shared_ptr<dss::ModelValidityChecker>> built;
   for (std::size_t k = 0; k < names_list.size(); ++k) {
     dss::CheckerConfig cfg;
     cfg.checker = names_list[k];
@@ -258,14 +261,20 @@ int run(int argc, char** argv) {
     else if (algorithm == "hybrid") cfg.algorithm = dss::Algorithm::kHybrid;
     else throw std::invalid_argument("--algorithm must be dss, gjk or hybrid");
     auto checker = dss::makeChecker(p, cfg);
-    std::vector<char> valid(st.size());
-    std::vector<double> per_state, per_state_wall;
-    const double n = double(std::max<std::size_t>(1, st.size()));
-    for (int rep = 0; rep < repeat; ++rep) {
+    built.push_back(checker);
+  }
+  const std::size_t nc = built.size();
+  std::vector<std::vector<char>> valid(nc, std::vector<char>(st.size()));
+  std::vector<std::vector<double>> per_state(nc), per_state_wall(nc);
+  const double n = double(std::max<std::size_t>(1, st.size()));
+  for (int rep = -1; rep < repeat; ++rep) {
+    for (std::size_t k = 0; k < nc; ++k) {
+      const dss::ModelValidityChecker& checker = *built[k];
+      std::vector<char>& v = valid[k];
       const auto t0 = std::chrono::steady_clock::now();
       const double c0 = threadCpuSeconds();
       if (threads <= 1) {
-        for (std::size_t i = 0; i < st.size(); ++i) valid[i] = checker->isValid(st[i]);
+        for (std::size_t i = 0; i < st.size(); ++i) v[i] = checker.isValid(st[i]);
       } else {
         // Contiguous blocks per thread (no false sharing on `valid` except at block edges).
         std::vector<std::thread> pool;
@@ -273,27 +282,32 @@ int run(int argc, char** argv) {
         for (int t = 0; t < threads; ++t)
           pool.emplace_back([&, t] {
             const std::size_t b = std::min(st.size(), t * block), e = std::min(st.size(), b + block);
-            for (std::size_t i = b; i < e; ++i) valid[i] = checker->isValid(st[i]);
+            for (std::size_t i = b; i < e; ++i) v[i] = checker.isValid(st[i]);
           });
         for (auto& th : pool) th.join();
       }
       const double c1 = threadCpuSeconds();
       const auto t1 = std::chrono::steady_clock::now();
+      if (rep < 0) continue;  // warm-up
       // With threads, only wall time means anything.
-      per_state.push_back(threads <= 1 ? (c1 - c0) * 1e6 / n
-                                       : std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
-      per_state_wall.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
+      per_state[k].push_back(threads <= 1 ? (c1 - c0) * 1e6 / n
+                                          : std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
+      per_state_wall[k].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
     }
-    std::sort(per_state.begin(), per_state.end());
-    std::sort(per_state_wall.begin(), per_state_wall.end());
+  }
+  for (std::size_t k = 0; k < nc; ++k) {
+    const auto& checker = built[k];
+    std::sort(per_state[k].begin(), per_state[k].end());
+    std::sort(per_state_wall[k].begin(), per_state_wall[k].end());
     const auto c = checker->counters();
     nlohmann::json j;
     j["checker"] = names_list[k];
     if (checker->name() == "dss") j["mode"] = mode, j["algorithm"] = algorithm;
     j["states"] = st.size();
-    j["valid"] = std::count(valid.begin(), valid.end(), 1);
-    j["us_per_state"] = per_state.empty() ? 0.0 : per_state[per_state.size() / 2];
-    j["us_per_state_wall"] = per_state_wall.empty() ? 0.0 : per_state_wall[per_state_wall.size() / 2];
+    j["valid"] = std::count(valid[k].begin(), valid[k].end(), 1);
+    j["us_per_state"] = per_state[k].empty() ? 0.0 : per_state[k][per_state[k].size() / 2];
+    j["us_per_state_wall"] = per_state_wall[k].empty() ? 0.0 : per_state_wall[k][per_state_wall[k].size() / 2];
+    j["us_per_state_min"] = per_state[k].empty() ? 0.0 : per_state[k].front();
     j["timer"] = threads <= 1 ? "thread CPU time (wall time in us_per_state_wall)" : "wall time";
     j["threads"] = threads;
     j["repetitions"] = repeat;
@@ -305,11 +319,10 @@ int run(int argc, char** argv) {
       j["prefilter"] = f->prefilterName();
     }
     if (k == 0) {
-      first = valid;
-      for (char v : valid) std::cout << (v ? 1 : 0) << "\n";
+      for (char v : valid[0]) std::cout << (v ? 1 : 0) << "\n";
     } else {
       std::size_t dis = 0;
-      for (std::size_t i = 0; i < valid.size(); ++i) dis += valid[i] != first[i];
+      for (std::size_t i = 0; i < valid[k].size(); ++i) dis += valid[k][i] != valid[0][i];
       j["disagreements"] = dis;
     }
     std::cerr << j.dump() << "\n";
