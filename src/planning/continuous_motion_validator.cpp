@@ -23,6 +23,7 @@ struct Scratch {
   std::vector<double> pad, q0, q1, qa, qb;
   std::vector<int> work;  // unit indices, a stack of lists (see check())
   std::vector<Interval> stack;
+  std::uint64_t unit_tests = 0;  // this motion's swept tests (added to the shared counter once)
 };
 Scratch& scratch() {
   thread_local Scratch s;
@@ -133,7 +134,7 @@ void ContinuousMotionValidator::paddings(const double* qa, const double* qb, dou
 bool ContinuousMotionValidator::unitClear(const Unit& u, const double* pad) const {
   const CollisionModel& m = checker_->model();
   const auto& set = checker_->settings();
-  const Scratch& sc = scratch();
+  Scratch& sc = scratch();
   const auto& el = m.elements();
   const auto& ea = el[u.a];
   const Eigen::Isometry3d& XA0 = sc.XA[ea.link];
@@ -143,7 +144,7 @@ bool ContinuousMotionValidator::unitClear(const Unit& u, const double* pad) cons
     const double p = pad[ea.slot] + set.scene_padding;
     const double r = 0.5 * (a1 - a0).norm() + ea.radius + p;
     if (detail::sqDistPointAabb(0.5 * (a0 + a1), m.obstacleBoxes()[u.b]) > r * r) return true;
-    unit_tests_.fetch_add(1, std::memory_order_relaxed);
+    ++sc.unit_tests;
     const Obstacle& o = m.scene().obstacles[u.b];
     return !sweptVsPosed(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, o.shape, o.X_WO,
                          set.options);
@@ -155,7 +156,7 @@ bool ContinuousMotionValidator::unitClear(const Unit& u, const double* pad) cons
   const double p = pad[ea.slot] + pad[eb.slot] + set.self_padding;
   const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + ea.radius + eb.radius + p;
   if ((0.5 * (a0 + a1) - 0.5 * (b0 + b1)).squaredNorm() > r * r) return true;
-  unit_tests_.fetch_add(1, std::memory_order_relaxed);
+  ++sc.unit_tests;
   return !sweptVsSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, eb.source->shape,
                        XB0 * eb.source->X_LS, XB1 * eb.source->X_LS, set.options);
 }
@@ -178,11 +179,24 @@ bool ContinuousMotionValidator::check(const double* q0, const double* q1, double
   sc.stack.push_back({0.0, 1.0, 0, units_.size()});
   double* qa = sc.qa.data();
   double* qb = sc.qb.data();
+  // The shared counters are updated once per motion, not per test: threads checking motions
+  // concurrently would otherwise fight over their cache line.
+  std::uint64_t intervals = 0;
+  sc.unit_tests = 0;
+  struct Flush {
+    const ContinuousMotionValidator* v;
+    const std::uint64_t& intervals;
+    const std::uint64_t& tests;
+    ~Flush() {
+      v->sub_motions_.fetch_add(intervals, std::memory_order_relaxed);
+      v->unit_tests_.fetch_add(tests, std::memory_order_relaxed);
+    }
+  } flush{this, intervals, sc.unit_tests};
   while (!sc.stack.empty()) {
     const Interval iv = sc.stack.back();
     sc.stack.pop_back();
     sc.work.resize(iv.end);
-    sub_motions_.fetch_add(1, std::memory_order_relaxed);
+    ++intervals;
     for (std::size_t i = 0; i < n; ++i) {
       qa[i] = q0[i] + iv.ta * (q1[i] - q0[i]);
       qb[i] = q0[i] + iv.tb * (q1[i] - q0[i]);
