@@ -191,7 +191,10 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {
-    for (int o : slot_obstacles[s]) slots_[s].obstacles.push_back(new_index[o]);
+    for (int o : slot_obstacles[s]) {
+      slots_[s].obstacles.push_back(new_index[o]);
+      slots_[s].boxes.push_back(boxes_[new_index[o]]);
+    }
     scene_pairs_ += slots_[s].obstacles.size();
   }
   buildSelfTables(options);

@@ -163,8 +163,8 @@ bool ContinuousMotionValidator::unitClear(const Unit& u, const double* pad) cons
 
 bool ContinuousMotionValidator::check(const double* q0, const double* q1, double* last) const {
   // Depth-first halving, left half first. `work` is a stack of unit lists: an interval owns
-  // work[begin, end), written by its parent; the units it fails to clear are appended after
-  // `end` and shared by its two halves. When an interval is popped, everything after its
+  // work[begin, end), written by its parent; the units it leaves for its halves (the first
+  // one it fails to clear and those after it) are appended after `end` and shared by both. When an interval is popped, everything after its
   // own list belongs to intervals already finished, so the list is cut back to `end` first.
   const CollisionModel& m = checker_->model();
   const std::size_t n = m.robot().numActiveJoints();
@@ -206,7 +206,18 @@ bool ContinuousMotionValidator::check(const double* q0, const double* q1, double
     paddings(qa, qb, sc.pad.data());
     for (std::size_t w = iv.begin; w < iv.end; ++w) {
       const int u = sc.work[w];
-      if (!unitClear(units_[u], sc.pad.data())) sc.work.push_back(u);
+      if (unitClear(units_[u], sc.pad.data())) continue;  // cleared for all of [ta, tb]
+      // The first unit not cleared decides that [ta, tb] is split: it goes first in the
+      // halves' list (near a contact it fails again at once), followed by the units not yet
+      // tested here. Testing those here too would clear some for both halves with one test,
+      // but on long motions most fail at the upper levels and the tests are wasted (measured:
+      // 2-4x slower per motion on the Panda and the iiwa).
+      sc.work.push_back(u);
+      for (std::size_t x = w + 1; x < iv.end; ++x) {
+        const int rest = sc.work[x];
+        sc.work.push_back(rest);
+      }
+      break;
     }
     if (sc.work.size() == iv.end) continue;  // every unit cleared over [ta, tb]
     if (iv.tb - iv.ta <= min_fraction_) {

@@ -121,6 +121,7 @@ class CollisionModel {
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere of all elements
     double radius = 0.0;
     std::vector<int> obstacles;   ///< kept obstacles this slot is checked against
+    std::vector<Aabb> boxes;      ///< their world boxes, in the same order (contiguous for the sweep)
     /// Reach ball in the world (moving slots): every pose of the link stays inside.
     Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
     double reach_radius = 0.0;
@@ -271,9 +272,13 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     const Eigen::Isometry3d& X = X_WL[s.link];
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
-    for (int o : s.obstacles) {
-      const Aabb& box = boxes_[o];
-      if (detail::sqDistPointAabb(c, box) > r * r) continue;
+    const double r2 = r * r;
+    const Aabb* bx = s.boxes.data();
+    const std::size_t nb = s.boxes.size();
+    for (std::size_t i = 0; i < nb; ++i) {
+      const Aabb& box = bx[i];
+      if (detail::sqDistPointAabb(c, box) > r2) continue;
+      const int o = s.obstacles[i];
       for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
         const Element& el = elements_[e];
         if (s.num_elements > 1) {

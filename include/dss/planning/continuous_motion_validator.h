@@ -11,10 +11,12 @@
 // element lies inside conv(X_t0(S) U X_t1(S)) grown by pad_L: a padded SweptHull, decided by
 // DSS. The quadratic term makes the bound shrink four-fold per halving once W_L < 1 rad.
 //
-// Work is kept per unit (element vs obstacle, element vs element of a self pair): the whole
-// motion tests every unit; a sub-motion tests only the units that its parent could not clear.
-// A sub-motion with units left is halved, left half first, after checking its midpoint state:
-// a colliding midpoint ends the search at once (the motion is invalid). A unit still not
+// Work is kept per unit (element vs obstacle, element vs element of a self pair): a
+// sub-motion tests its units in order until one is not cleared; that unit and the ones not yet
+// tested are left to its two halves (the failing one first), while the units it cleared are
+// never tested again inside it. A sub-motion with units left is halved, left half first, after
+// checking its midpoint state: a colliding midpoint ends the search at once (the motion is
+// invalid). A unit still not
 // cleared at the minimum fraction makes the motion invalid. For self pairs both links are
 // swept, ignoring the time correlation, which is conservative. OMPL's lastValid contract: the
 // last state known valid (start of the first failing sub-motion) and its fraction.
