@@ -176,3 +176,44 @@ BOOST_AUTO_TEST_CASE(spherical_polygon_invariants) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// The hull scan (SIMD lanes over coordinate arrays padded with copies of the last point)
+// returns exactly what a plain linear scan returns: the first index of the largest d.x, for
+// every size around the lane widths, ties included (duplicated points, integer grids), in
+// double and float; NaN directions give index 0 as the plain scan does.
+template <class T>
+void checkScanAgainstLinear(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> coord(-3, 3);  // small integers: many exact ties
+  std::normal_distribution<double> normal;
+  for (int n = 1; n <= 37; ++n) {
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<Vec3<T>> pts;
+      for (int i = 0; i < n; ++i) {
+        if (trial % 2 == 0)
+          pts.emplace_back(T(coord(rng)), T(coord(rng)), T(coord(rng)));
+        else
+          pts.emplace_back(T(normal(rng)), T(normal(rng)), T(normal(rng)));
+      }
+      if (n > 2 && trial % 5 == 0) pts[n - 1] = pts[0];  // duplicate of the first point
+      const ConvexHullT<T> hull(pts);
+      for (int k = 0; k < 12; ++k) {
+        const Vec3<T> d = (k % 3 == 0) ? Vec3<T>(T(coord(rng)), T(coord(rng)), T(coord(rng)))
+                                       : Vec3<T>(T(normal(rng)), T(normal(rng)), T(normal(rng)));
+        int expect = 0;
+        T best = pts[0].dot(d);
+        for (int i = 1; i < n; ++i)
+          if (pts[i].dot(d) > best) best = pts[i].dot(d), expect = i;
+        BOOST_TEST_REQUIRE(hull.supportIndex(d) == expect, "n=" << n << " trial=" << trial);
+        BOOST_TEST_REQUIRE((hull.support(d, Vec3<T>::Zero()) == pts[expect]));
+      }
+      const T nan = std::numeric_limits<T>::quiet_NaN();
+      BOOST_TEST(hull.supportIndex(Vec3<T>(nan, T(1), T(0))) == 0);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(hull_scan_matches_linear_scan) {
+  std::mt19937_64 rng(20261124);
+  checkScanAgainstLinear<double>(rng);
+  checkScanAgainstLinear<float>(rng);
+}

@@ -14,15 +14,108 @@
 // shift), so the exact mode decides such pairs exactly.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
 #include "dss/core/types.h"
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
 namespace dss {
+namespace detail {
+
+#if defined(__SSE2__) || defined(_M_X64)
+template <class T>
+inline constexpr std::size_t kScanLanes = std::is_same<T, float>::value ? 4 : (std::is_same<T, double>::value ? 2 : 1);
+#else
+template <class T>
+inline constexpr std::size_t kScanLanes = 1;
+#endif
+
+/// Index of the first of the points (x[i], y[i], z[i]), i < n, maximising the dot product with
+/// (dx, dy, dz). The arrays hold `stride` entries, padded with copies of point n - 1.
+template <class T>
+DSS_INLINE int scanSoa(const T* x, int stride, int n, T dx, T dy, T dz) {
+  (void)stride;
+  int best = 0;
+  T best_value = x[0] * dx + x[stride] * dy + x[2 * stride] * dz;
+  for (int i = 1; i < n; ++i) {
+    const T v = x[i] * dx + x[stride + i] * dy + x[2 * stride + i] * dz;
+    if (v > best_value) {
+      best_value = v;
+      best = i;
+    }
+  }
+  return best;
+}
+
+#if defined(__SSE2__) || defined(_M_X64)
+// Two points per step, each lane keeping its own best value and index; the lanes then agree
+// on the first index of the largest value, as the linear scan would.
+DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy, double dz) {
+  (void)n;
+  const double* y = x + stride;
+  const double* z = y + stride;
+  const __m128d DX = _mm_set1_pd(dx), DY = _mm_set1_pd(dy), DZ = _mm_set1_pd(dz);
+  __m128d best = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x), DX), _mm_mul_pd(_mm_loadu_pd(y), DY)),
+                            _mm_mul_pd(_mm_loadu_pd(z), DZ));
+  __m128d index = _mm_set_pd(1.0, 0.0);
+  __m128d best_index = index;
+  const __m128d two = _mm_set1_pd(2.0);
+  for (int i = 2; i < stride; i += 2) {
+    index = _mm_add_pd(index, two);
+    const __m128d v = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), DX), _mm_mul_pd(_mm_loadu_pd(y + i), DY)),
+                                 _mm_mul_pd(_mm_loadu_pd(z + i), DZ));
+    const __m128d gt = _mm_cmpgt_pd(v, best);
+    best = _mm_or_pd(_mm_and_pd(gt, v), _mm_andnot_pd(gt, best));
+    best_index = _mm_or_pd(_mm_and_pd(gt, index), _mm_andnot_pd(gt, best_index));
+  }
+  // Lane 1 wins when larger, or equal with a smaller index: decided without a branch.
+  const __m128d v1 = _mm_unpackhi_pd(best, best), i1 = _mm_unpackhi_pd(best_index, best_index);
+  const __m128d take = _mm_or_pd(_mm_cmpgt_sd(v1, best),
+                                 _mm_and_pd(_mm_cmpeq_sd(v1, best), _mm_cmplt_sd(i1, best_index)));
+  return static_cast<int>(_mm_cvtsd_f64(_mm_or_pd(_mm_and_pd(take, i1), _mm_andnot_pd(take, best_index))));
+}
+
+DSS_INLINE int scanSoa(const float* x, int stride, int n, float dx, float dy, float dz) {
+  (void)n;
+  const float* y = x + stride;
+  const float* z = y + stride;
+  const __m128 DX = _mm_set1_ps(dx), DY = _mm_set1_ps(dy), DZ = _mm_set1_ps(dz);
+  __m128 best = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x), DX), _mm_mul_ps(_mm_loadu_ps(y), DY)),
+                           _mm_mul_ps(_mm_loadu_ps(z), DZ));
+  __m128 index = _mm_set_ps(3.0f, 2.0f, 1.0f, 0.0f);
+  __m128 best_index = index;
+  const __m128 four = _mm_set1_ps(4.0f);
+  for (int i = 4; i < stride; i += 4) {
+    index = _mm_add_ps(index, four);
+    const __m128 v = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + i), DX), _mm_mul_ps(_mm_loadu_ps(y + i), DY)),
+                                _mm_mul_ps(_mm_loadu_ps(z + i), DZ));
+    const __m128 gt = _mm_cmpgt_ps(v, best);
+    best = _mm_or_ps(_mm_and_ps(gt, v), _mm_andnot_ps(gt, best));
+    best_index = _mm_or_ps(_mm_and_ps(gt, index), _mm_andnot_ps(gt, best_index));
+  }
+  // Pairwise reduction of the four lanes, without a branch: the larger value wins, and of
+  // equal values the smaller index.
+  auto reduce = [](__m128& v, __m128& i, __m128 v2, __m128 i2) {
+    const __m128 take = _mm_or_ps(_mm_cmpgt_ps(v2, v), _mm_and_ps(_mm_cmpeq_ps(v2, v), _mm_cmplt_ps(i2, i)));
+    v = _mm_or_ps(_mm_and_ps(take, v2), _mm_andnot_ps(take, v));
+    i = _mm_or_ps(_mm_and_ps(take, i2), _mm_andnot_ps(take, i));
+  };
+  reduce(best, best_index, _mm_movehl_ps(best, best), _mm_movehl_ps(best_index, best_index));
+  reduce(best, best_index, _mm_shuffle_ps(best, best, 1), _mm_shuffle_ps(best_index, best_index, 1));
+  return static_cast<int>(_mm_cvtss_f32(best_index));
+}
+#endif
+
+}  // namespace detail
 
 inline constexpr std::size_t kHillClimbMinVertices = 48;
 inline constexpr int kSeedGrid = 8;
@@ -59,33 +152,23 @@ class ConvexHullT {
 
   const std::vector<Vec3<T>>& points() const { return points_; }
   std::size_t size() const { return points_.size(); }
-  bool climbs() const { return !offsets_.empty() && points_.size() >= kHillClimbMinVertices; }
+  bool climbs() const { return climbs_; }
 
   /// Index of a point maximising d·x (the first of equal values in a linear scan).
-  int supportIndex(const Vec3<T>& d) const {
+  DSS_INLINE int supportIndex(const Vec3<T>& d) const {
     return climbs() ? climb(d) : scan(d);
   }
-  int scan(const Vec3<T>& d) const {
-    // Coordinates are also kept as separate arrays: this loop is the hottest of the library.
-    const int n = n_;
-    const T* x = soa_.data();
-    const T* y = x + n;
-    const T* z = y + n;
-    const T dx = d.x(), dy = d.y(), dz = d.z();
-    int best = 0;
-    T best_value = x[0] * dx + y[0] * dy + z[0] * dz;
-    for (int i = 1; i < n; ++i) {
-      const T v = x[i] * dx + y[i] * dy + z[i] * dz;
-      if (v > best_value) {
-        best_value = v;
-        best = i;
-      }
-    }
-    return best;
+  DSS_INLINE int scan(const Vec3<T>& d) const {
+    // Coordinates are kept as separate arrays, padded to whole SIMD registers with copies of
+    // the last point: this loop is the hottest of the library.
+    return detail::scanSoa(soa_.data(), stride_, n_, d.x(), d.y(), d.z());
   }
 
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    return points_[supportIndex(d)] - shift;
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    // Read back from the coordinate arrays the scan has just brought into cache.
+    const int i = supportIndex(d);
+    const T* x = soa_.data();
+    return Vec3<T>(x[i], x[stride_ + i], x[2 * stride_ + i]) - shift;
   }
   Vec3<T> center() const { return center_; }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
@@ -118,12 +201,17 @@ class ConvexHullT {
     center_ = sum / T(points_.size());
     const std::size_t n = points_.size();
     n_ = static_cast<int>(n);
-    soa_.resize(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      soa_[i] = points_[i].x();
-      soa_[n + i] = points_[i].y();
-      soa_[2 * n + i] = points_[i].z();
+    constexpr std::size_t kLanes = detail::kScanLanes<T>;
+    const std::size_t stride = (n + kLanes - 1) / kLanes * kLanes;
+    stride_ = static_cast<int>(stride);
+    soa_.resize(3 * stride);
+    for (std::size_t i = 0; i < stride; ++i) {
+      const Vec3<T>& p = points_[std::min(i, n - 1)];
+      soa_[i] = p.x();
+      soa_[stride + i] = p.y();
+      soa_[2 * stride + i] = p.z();
     }
+    climbs_ = !offsets_.empty() && n >= kHillClimbMinVertices;
     // Seeds for climbing: the support vertex of the centre direction of every cube-map cell.
     seeds_.clear();
     if (offsets_.empty()) return;
@@ -181,8 +269,10 @@ class ConvexHullT {
   }
 
   std::vector<Vec3<T>> points_;
-  std::vector<T> soa_;          // x..., y..., z... of points_
+  std::vector<T> soa_;          // x..., y..., z... of points_, each padded to stride_
   int n_ = 0;
+  int stride_ = 0;
+  bool climbs_ = false;
   std::vector<int> offsets_;    // CSR adjacency (empty: linear scan only)
   std::vector<int> adjacency_;
   Vec3<T> center_ = Vec3<T>::Zero();

@@ -79,13 +79,13 @@ struct Difference {
   }
 
   /// q = S_A(n) - S_B(-n) with its exact rounding error in lo (exact mode).
-  Vec3<W> support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb, Vec3<W>& lo) const {
+  DSS_INLINE Vec3<W> support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb, Vec3<W>& lo) const {
     pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
     pb = b.support((-n).template cast<SB>(), shift_b).template cast<W>();
     return split(pa, pb, lo);
   }
 
-  static Vec3<W> split(const Vec3<W>& x, const Vec3<W>& y, Vec3<W>& lo) {
+  static DSS_INLINE Vec3<W> split(const Vec3<W>& x, const Vec3<W>& y, Vec3<W>& lo) {
     Vec3<W> hi;
     if constexpr (Exact && std::is_same<W, double>::value) {
       for (int k = 0; k < 3; ++k) exact::twoDiff(x[k], y[k], hi[k], lo[k]);
@@ -119,7 +119,7 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
   return exact::dotDiffSign(n.data(), pa.data(), pb.data());
 }
 
-template <class W, bool Exact, class A, class B>
+template <class W, bool Exact, class A, class B, bool kHybrid = false>
 Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
   Result result;
   const Difference<A, B, W, Exact> diff(a, b);
@@ -142,7 +142,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
 
   for (;;) {
     Vec3<W> n;
-    if (result.iterations < gjk_steps && !v.isZero(0)) {
+    if (kHybrid && result.iterations < gjk_steps && !v.isZero(0)) {
       n = -v;
     } else {
       gjk_steps = 0;
@@ -198,7 +198,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
       default:
         break;
     }
-    if (gjk_steps > 0) {
+    if (kHybrid && gjk_steps > 0) {
       // GJK step: add q to the simplex and move v to its point closest to the origin.
       simplex[simplex_size++] = pole.hi;
       v = closestOnSimplex(simplex, simplex_size);

@@ -21,7 +21,7 @@ struct Posed {
   Posed() = default;
   Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p) : shape(std::move(s)), R_WS(R), p_WS(p) {}
 
-  Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
+  DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
     const Vec3<Scalar> d_S = R_WS.transpose() * d_W;
     const Vec3<Scalar> x_S = shape.support(d_S, Vec3<Scalar>::Zero());
     return R_WS * x_S + (p_WS - shift);

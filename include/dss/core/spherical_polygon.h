@@ -16,6 +16,11 @@
 #include "dss/core/exact_predicates.h"
 #include "dss/core/types.h"
 
+#if defined(__SSE__) || defined(_M_X64)
+#include <xmmintrin.h>
+#define DSS_HAVE_RSQRT 1
+#endif
+
 namespace dss::detail {
 
 /// A point of the Minkowski difference: hi is its floating-point value; in the exact mode lo
@@ -27,6 +32,19 @@ struct Pole {
   Vec3<W> lo;
   W norm;
 };
+
+/// An approximation of 1/sqrt(x) for x > 0, to about 12 bits where the hardware has a
+/// reciprocal square-root estimate (and x is in float range), else exact. It only scales
+/// vertices and steering directions: every sign the search decides on is independent of the
+/// (positive) scale, and the filter bounds are written in terms of the scale actually used.
+template <class W>
+DSS_INLINE W approxInvSqrt(W x) {
+#ifdef DSS_HAVE_RSQRT
+  if (x > W(1e-30) && x < W(1e30))
+    return W(_mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(static_cast<float>(x)))));
+#endif
+  return W(1) / std::sqrt(x);
+}
 
 enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow };
 
@@ -45,19 +63,20 @@ class SphericalPolygon {
 
   /// The next test direction (not normalised): a point inside the polygon -- the sum of its
   /// unit vertices (the paper's renormalised average), or the middle of a lune.
-  Vec3<W> center() const {
+  DSS_INLINE Vec3<W> center() const {
     if (count_ == 1) return -poles_[0].hi;
-    if (count_ == 2)  // -(p0/|p0| + p1/|p1|), scaled by |p0||p1| to avoid divisions
-      return -(poles_[0].hi * poles_[1].hi.norm() + poles_[1].hi * poles_[0].hi.norm());
+    if (count_ == 2)  // -(p0/|p0| + p1/|p1|)
+      return -(poles_[0].hi * approxInvSqrt(poles_[0].hi.squaredNorm()) +
+               poles_[1].hi * approxInvSqrt(poles_[1].hi.squaredNorm()));
     Vec3<W> s = unit_[0];
     for (int i = 1; i < count_; ++i) s += unit_[i];
     return s;
   }
 
   /// An upper bound of |hi| without a square root.
-  static W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
+  static DSS_INLINE W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
 
-  ClipResult clip(const Pole<W>& q) {
+  DSS_INLINE ClipResult clip(const Pole<W>& q) {
     if (count_ == 1) return clipHemisphere(q);
     if (count_ == 2) return clipLune(q);
     return clipPolygon(q);
@@ -66,7 +85,7 @@ class SphericalPolygon {
  private:
   // Sign of det(a, b, q) = (a x b).q from the cached unit vertex u = fl((a x b)/|a x b|) and
   // its error bound e: |u.q - det/|a x b|| <= e |q|_1. Below it the exact predicate decides.
-  static int detSign(const Vec3<W>& u, W e, const Pole<W>& a, const Pole<W>& b, const Pole<W>& q) {
+  static DSS_INLINE int detSign(const Vec3<W>& u, W e, const Pole<W>& a, const Pole<W>& b, const Pole<W>& q) {
     const W d = u.dot(q.hi);
     if constexpr (!Exact) {
       return (d > W(0)) - (d < W(0));
@@ -110,12 +129,12 @@ class SphericalPolygon {
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
   // covers all of it with margin.
-  void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
+  DSS_INLINE void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
 
-  void setUnit(int i, const Vec3<W>& v, const Pole<W>& a, const Pole<W>& b) {
+  DSS_INLINE void setUnit(int i, const Vec3<W>& v, const Pole<W>& a, const Pole<W>& b) {
     const W n2 = v.squaredNorm();
     if (n2 > W(0)) {
-      const W inv = W(1) / std::sqrt(n2);
+      const W inv = approxInvSqrt(n2);  // unit_ has norm 1 within 1e-3: see detSign's bound
       unit_[i] = v * inv;
       if constexpr (Exact) err_[i] = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
     } else {
@@ -131,7 +150,7 @@ class SphericalPolygon {
     cacheVertex(0, a, b);
   }
 
-  ClipResult clipHemisphere(const Pole<W>& q) {
+  DSS_INLINE ClipResult clipHemisphere(const Pole<W>& q) {
     const Pole<W>& p = poles_[0];
     const Vec3<W> v = p.hi.cross(q.hi);
     // The floating-point cross product decides "not parallel" when a component clears its
@@ -155,7 +174,7 @@ class SphericalPolygon {
     return ClipResult::kChanged;
   }
 
-  ClipResult clipLune(const Pole<W>& q) {
+  DSS_INLINE ClipResult clipLune(const Pole<W>& q) {
     const Pole<W> p0 = poles_[0], p1 = poles_[1];
     const int s = detSign(unit_[0], err(0), p0, p1, q);
     if (s > 0) {  // vertex p0 x p1 cut off: q goes between p0 and p1
@@ -188,7 +207,7 @@ class SphericalPolygon {
     return ClipResult::kChanged;
   }
 
-  void setPolygon3(const Pole<W>& a, const Pole<W>& b, const Pole<W>& c) {
+  DSS_INLINE void setPolygon3(const Pole<W>& a, const Pole<W>& b, const Pole<W>& c) {
     poles_[0] = a, poles_[1] = b, poles_[2] = c;
     count_ = 3;
     cacheVertex(0, a, b);
@@ -196,18 +215,18 @@ class SphericalPolygon {
     cacheVertex(2, c, a);
   }
 
-  W err(int i) const {
+  DSS_INLINE W err(int i) const {
     if constexpr (Exact) return err_[i];
     return W(0);
   }
 
-  void moveEntry(int to, int from) {
+  DSS_INLINE void moveEntry(int to, int from) {
     poles_[to] = poles_[from];
     unit_[to] = unit_[from];
     if constexpr (Exact) err_[to] = err_[from];
   }
 
-  ClipResult clipPolygon(const Pole<W>& q) {
+  DSS_INLINE ClipResult clipPolygon(const Pole<W>& q) {
     bool keep[kCapacity];
     int kept = 0;
     for (int i = 0; i < count_; ++i) {

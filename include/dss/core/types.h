@@ -6,6 +6,14 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+// The query loop is a handful of small functions (support, polygon update); compilers
+// sometimes leave them out of line, and the call boundary then spills every vector to memory.
+#if defined(__GNUC__) || defined(__clang__)
+#define DSS_INLINE inline __attribute__((always_inline))
+#else
+#define DSS_INLINE inline
+#endif
+
 namespace dss {
 
 template <class T>
