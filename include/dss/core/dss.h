@@ -61,9 +61,10 @@ struct Difference {
     shift_b = c.template cast<SB>();
     err_scale = W(0);
     if constexpr (!Exact) return;
+    // 1-norms bound the distances without a square root on the query's critical path.
     const double mag = double(sa.magnitude()) + double(sb.magnitude()) +
-                       (sa.anchor().template cast<double>() - c).norm() +
-                       (sb.anchor().template cast<double>() - c).norm();
+                       (sa.anchor().template cast<double>() - c).template lpNorm<1>() +
+                       (sb.anchor().template cast<double>() - c).template lpNorm<1>();
     // Each support value h(n) = n.x is off by a few ulps of |n| (|x_S| + |t|): rotations of
     // the direction and of the point, normalisations, the translation and the dot product.
     // 32 u covers them with margin for both shapes (float supports use float's u).
@@ -72,29 +73,33 @@ struct Difference {
     err_scale = W(32 * u * mag);
   }
 
-  Vec3<W> start(Vec3<W>& lo) const {
-    const Vec3<W> ca = (a.center() - shift_a).template cast<W>();
-    const Vec3<W> cb = (b.center() - shift_b).template cast<W>();
-    return split(ca, cb, lo);
+  /// The centres of A and B (points of the shapes), in the working frame.
+  DSS_INLINE void centers(Vec3<W>& ca, Vec3<W>& cb) const {
+    ca = (a.center() - shift_a).template cast<W>();
+    cb = (b.center() - shift_b).template cast<W>();
   }
 
-  /// q = S_A(n) - S_B(-n) with its exact rounding error in lo (exact mode).
-  DSS_INLINE Vec3<W> support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb, Vec3<W>& lo) const {
+  /// Support points pa = S_A(n) and pb = S_B(-n); q = pa - pb is a point of A - B.
+  DSS_INLINE void support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb) const {
     pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
     pb = b.support((-n).template cast<SB>(), shift_b).template cast<W>();
-    return split(pa, pb, lo);
   }
 
-  static DSS_INLINE Vec3<W> split(const Vec3<W>& x, const Vec3<W>& y, Vec3<W>& lo) {
-    Vec3<W> hi;
+  /// The rounding error of hi = fl(x - y), so that hi + lo = x - y exactly (exact mode; zero
+  /// otherwise). Computed only when a pole enters the polygon: a separating step needs none.
+  static DSS_INLINE Vec3<W> error(const Vec3<W>& x, const Vec3<W>& y) {
+    Vec3<W> lo;
     if constexpr (Exact && std::is_same<W, double>::value) {
-      for (int k = 0; k < 3; ++k) exact::twoDiff(x[k], y[k], hi[k], lo[k]);
+      for (int k = 0; k < 3; ++k) {
+        W hi;
+        exact::twoDiff(x[k], y[k], hi, lo[k]);
+      }
     } else {
-      hi = x - y;
       lo.setZero();
     }
-    return hi;
+    return lo;
   }
+
 };
 
 /// Exact sign of h_A(n) + h_B(-n) for two world-vertex hulls; on return (if >= 0) pa, pb are
@@ -126,35 +131,41 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
   using Poly = SphericalPolygon<W, Exact>;
   Poly poly;
   Pole<W> pole;
-  pole.hi = diff.start(pole.lo);
+  Vec3<W> pa, pb;
+  diff.centers(pa, pb);
+  pole.hi = pa - pb;
   if (!pole.hi.allFinite()) {
     result.status = Status::kInvalidInput;
     return result;
   }
-  pole.norm = Poly::normBound(pole.hi);
-  if (pole.hi.isZero(0) && pole.lo.isZero(0)) return result;  // centres coincide
-  poly.init(pole);
+  // fl(a - b) is zero only when a == b: the centres coincide (and the rounding error is zero).
+  if (pole.hi.isZero(0)) return result;
+  // The first pole enters the polygon only if the first step does not separate (the usual
+  // case at low collision density): its rounding error waits until then.
+  const Vec3<W> start_a = pa, start_b = pb;
 
   // Hybrid: GJK's simplex (closest point to the origin) steers the first steps.
   Vec3<W> simplex[4];
   int simplex_size = 0;
   Vec3<W> v = pole.hi;  // GJK's current point of P closest to the origin
+  Vec3<W> n = -pole.hi;  // the first test direction: from A's centre towards B's
 
   for (;;) {
-    Vec3<W> n;
-    if (kHybrid && result.iterations < gjk_steps && !v.isZero(0)) {
-      n = -v;
-    } else {
-      gjk_steps = 0;
-      n = poly.center();
+    if (result.iterations > 0) {
+      if (kHybrid && result.iterations < gjk_steps && !v.isZero(0)) {
+        n = -v;
+      } else {
+        gjk_steps = 0;
+        n = poly.center();
+      }
     }
     if (result.iterations >= max_iterations) {
       result.status = Status::kIterationLimit;
       return result;
     }
     ++result.iterations;
-    Vec3<W> pa, pb;
-    pole.hi = diff.support(n, pa, pb, pole.lo);
+    diff.support(n, pa, pb);
+    pole.hi = pa - pb;
     const W t = n.dot(pole.hi);
     if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
       result.status = Status::kInvalidInput;
@@ -182,12 +193,20 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
             return result;
           }
           pa = xa, pb = xb;
-          pole.hi = Difference<A, B, W, Exact>::split(pa, pb, pole.lo);
+          pole.hi = pa - pb;
         }
         // Otherwise the direction is not certifiably separating (a gap within rounding of
         // the supports): keep searching with q, which is a point of P up to rounding.
       }
     }
+    if (result.iterations == 1) {
+      Pole<W> first;
+      first.hi = start_a - start_b;
+      first.lo = diff.error(start_a, start_b);
+      first.norm = Poly::normBound(first.hi);
+      poly.init(first);
+    }
+    pole.lo = diff.error(pa, pb);
     pole.norm = Poly::normBound(pole.hi);
     switch (poly.clip(pole)) {
       case ClipResult::kEmpty:

@@ -19,8 +19,9 @@ template <class W, class A, class B>
 Result runGjk(const A& a, const B& b, int max_iterations) {
   Result result;
   const Difference<A, B, W, false> diff(a, b);
-  Vec3<W> lo;
-  Vec3<W> v = diff.start(lo);
+  Vec3<W> ca, cb;
+  diff.centers(ca, cb);
+  Vec3<W> v = ca - cb;
   if (!v.allFinite()) {
     result.status = Status::kInvalidInput;
     return result;
@@ -36,7 +37,8 @@ Result runGjk(const A& a, const B& b, int max_iterations) {
     }
     ++result.iterations;
     Vec3<W> pa, pb;
-    const Vec3<W> w = diff.support(Vec3<W>(-v), pa, pb, lo);
+    diff.support(Vec3<W>(-v), pa, pb);
+    const Vec3<W> w = pa - pb;
     if (!w.allFinite()) {
       result.status = Status::kInvalidInput;
       return result;

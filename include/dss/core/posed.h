@@ -5,9 +5,26 @@
 // so that two shapes far from the origin are compared in a frame near them.
 #pragma once
 
+#include <type_traits>
+
 #include "dss/core/types.h"
 
 namespace dss {
+namespace detail {
+// Shapes may declare `static constexpr bool kRotationInvariant = true` (a ball: its support
+// does not depend on the rotation of its frame) and `kCenteredAtOrigin = true` (center() is
+// the origin); posing then skips the work they make unnecessary.
+template <class S, class = void>
+struct RotationInvariant : std::false_type {};
+template <class S>
+struct RotationInvariant<S, std::void_t<decltype(S::kRotationInvariant)>>
+    : std::integral_constant<bool, S::kRotationInvariant> {};
+template <class S, class = void>
+struct CenteredAtOrigin : std::false_type {};
+template <class S>
+struct CenteredAtOrigin<S, std::void_t<decltype(S::kCenteredAtOrigin)>>
+    : std::integral_constant<bool, S::kCenteredAtOrigin> {};
+}  // namespace detail
 
 template <class S>
 struct Posed {
@@ -22,11 +39,17 @@ struct Posed {
   Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p) : shape(std::move(s)), R_WS(R), p_WS(p) {}
 
   DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
+    if constexpr (detail::RotationInvariant<S>::value) {
+      return shape.support(d_W, Vec3<Scalar>::Zero()) + (p_WS - shift);
+    }
     const Vec3<Scalar> d_S = R_WS.transpose() * d_W;
     const Vec3<Scalar> x_S = shape.support(d_S, Vec3<Scalar>::Zero());
     return R_WS * x_S + (p_WS - shift);
   }
-  Vec3<Scalar> center() const { return R_WS * shape.center() + p_WS; }
+  Vec3<Scalar> center() const {
+    if constexpr (detail::CenteredAtOrigin<S>::value) return p_WS;
+    return R_WS * shape.center() + p_WS;
+  }
   Vec3<Scalar> anchor() const { return p_WS; }
   Scalar magnitude() const { return shape.magnitude(); }
 };

@@ -12,6 +12,10 @@
 //   Vec3<T> anchor() const      the translation a pose adds (zero for unposed shapes).
 //   T magnitude() const         an upper bound of |x - anchor()| over the shape; it scales
 //                               the rounding-error bounds of the exact mode.
+//   static constexpr bool kRotationInvariant, kCenteredAtOrigin   (optional)
+//                               a ball's support ignores the rotation of its frame, and a
+//                               shape whose center() is its origin says so: Posed skips
+//                               the work these make unnecessary.
 //   static constexpr bool kExactVertices
 //                               true when `support` with a zero shift returns one of the
 //                               shape's input points bit for bit (vertex sets given in
@@ -37,6 +41,8 @@ template <class T>
 struct SphereT {
   T radius{0};
   static constexpr bool kExactVertices = false;
+  static constexpr bool kRotationInvariant = true;
+  static constexpr bool kCenteredAtOrigin = true;
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T n = d.norm();
     // n == 0: any point will do; the centre keeps the result finite.
@@ -51,6 +57,7 @@ template <class T>
 struct BoxT {
   Vec3<T> half = Vec3<T>::Zero();  // half edge lengths (URDF size / 2)
   static constexpr bool kExactVertices = false;
+  static constexpr bool kCenteredAtOrigin = true;
   static BoxT fromSize(const Vec3<T>& size) { return BoxT{size / T(2)}; }
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     return Vec3<T>(d.x() >= T(0) ? half.x() : -half.x(), d.y() >= T(0) ? half.y() : -half.y(),
@@ -67,6 +74,7 @@ struct CapsuleT {
   T radius{0};
   T half_length{0};
   static constexpr bool kExactVertices = false;
+  static constexpr bool kCenteredAtOrigin = true;
   static CapsuleT fromLength(T radius, T length) { return CapsuleT{radius, length / T(2)}; }
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T n = d.norm();
@@ -84,6 +92,7 @@ struct CylinderT {
   T radius{0};
   T half_length{0};
   static constexpr bool kExactVertices = false;
+  static constexpr bool kCenteredAtOrigin = true;
   static CylinderT fromLength(T radius, T length) { return CylinderT{radius, length / T(2)}; }
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
@@ -120,6 +129,7 @@ template <class T>
 struct EllipsoidT {
   Vec3<T> radii = Vec3<T>::Zero();
   static constexpr bool kExactVertices = false;
+  static constexpr bool kCenteredAtOrigin = true;
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     // x = D^2 d / |D d| with D = diag(radii)
     const Vec3<T> dd = radii.cwiseProduct(d);
