@@ -177,12 +177,25 @@ class SphericalPolygon {
   DSS_INLINE ClipResult clipLune(const Pole<W>& q) {
     const Pole<W> p0 = poles_[0], p1 = poles_[1];
     const int s = detSign(unit_[0], err(0), p0, p1, q);
+    // The lune's vertex p0 x p1 (unit_[0]) is a vertex of either triangle, as itself or
+    // negated (fl(p1 x p0) = -fl(p0 x p1) bit for bit): only two vertices are new.
     if (s > 0) {  // vertex p0 x p1 cut off: q goes between p0 and p1
-      setPolygon3(p0, q, p1);
+      const Vec3<W> u01 = unit_[0];
+      const W e01 = err(0);
+      poles_[1] = q;
+      poles_[2] = p1;
+      count_ = 3;
+      cacheVertex(0, p0, q);
+      cacheVertex(1, q, p1);
+      unit_[2] = -u01;
+      if constexpr (Exact) err_[2] = e01;
       return ClipResult::kChanged;
     }
-    if (s < 0) {  // vertex p1 x p0 cut off
-      setPolygon3(p0, p1, q);
+    if (s < 0) {  // vertex p1 x p0 cut off: the triangle p0, p1, q keeps p0 x p1
+      poles_[2] = q;
+      count_ = 3;
+      cacheVertex(1, p1, q);
+      cacheVertex(2, q, p0);
       return ClipResult::kChanged;
     }
     // q in the plane of p0 and p1: q = alpha p0 + beta p1. Solve in the coordinate plane
@@ -205,14 +218,6 @@ class SphericalPolygon {
     else
       setLune(q, p1);
     return ClipResult::kChanged;
-  }
-
-  DSS_INLINE void setPolygon3(const Pole<W>& a, const Pole<W>& b, const Pole<W>& c) {
-    poles_[0] = a, poles_[1] = b, poles_[2] = c;
-    count_ = 3;
-    cacheVertex(0, a, b);
-    cacheVertex(1, b, c);
-    cacheVertex(2, c, a);
   }
 
   DSS_INLINE W err(int i) const {
