@@ -5,6 +5,7 @@
 #include "dss/core/exact_predicates.h"
 
 #include <cassert>
+#include <cmath>
 
 namespace dss::exact {
 namespace {
@@ -52,18 +53,45 @@ void grow(const Expansion& e, double b, Expansion& h) {
 }
 
 // h = e + f, by growing e with each component of f.
-void sum(const Expansion& e, const Expansion& f, Expansion& h) {
-  Expansion buf[2];
-  buf[0] = e;
-  int cur = 0;
-  for (int i = 0; i < f.n; ++i) {
-    grow(buf[cur], f.c[i], buf[1 - cur]);
-    cur = 1 - cur;
-  }
-  h = buf[cur];
+// x + y = a + b exactly, given |a| >= |b| (or a == 0).
+inline void fastTwoSum(double a, double b, double& x, double& y) {
+  x = a + b;
+  y = b - (x - a);
 }
 
-// h = e * s (SCALE-EXPANSION with zero elimination).
+// h = e + f by merging the components of both in increasing magnitude and carrying the sum
+// along (Shewchuk's fast expansion sum, with zero elimination): linear in the lengths. Both
+// inputs are non-overlapping and increasing (as every routine here leaves them), and the
+// arithmetic is IEEE round-to-nearest-even, which the algorithm requires.
+void sum(const Expansion& e, const Expansion& f, Expansion& h) {
+  if (e.n == 0) {
+    h = f;
+    return;
+  }
+  if (f.n == 0) {
+    h = e;
+    return;
+  }
+  int i = 0, j = 0;
+  // Next component in increasing magnitude.
+  auto next = [&]() {
+    if (j >= f.n || (i < e.n && std::abs(e.c[i]) <= std::abs(f.c[j]))) return e.c[i++];
+    return f.c[j++];
+  };
+  h.n = 0;
+  double q = next();
+  double hh, qn;
+  fastTwoSum(next(), q, qn, hh);
+  q = qn;
+  if (hh != 0.0) h.c[h.n++] = hh;
+  while (i < e.n || j < f.n) {
+    twoSum(q, next(), qn, hh);
+    q = qn;
+    if (hh != 0.0) h.c[h.n++] = hh;
+  }
+  if (q != 0.0 || h.n == 0) h.c[h.n++] = q;
+}
+
 void scale(const Expansion& e, double s, Expansion& h) {
   h.n = 0;
   if (e.n == 0) return;
@@ -121,6 +149,23 @@ Expansion two(double h, double l) {
 int det3Sign(const double hi[3][3], const double lo[3][3]) {
   static constexpr int kPerm[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
                                       {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
+  // A filter first, on the leading parts alone: each lo is the rounding error of its hi, so
+  // |lo| <= u |hi|, and the lo terms move the determinant by at most ((1 + u)^3 - 1) P where
+  // P is the permanent of |hi|; the floating-point evaluation of det(hi) by cofactors errs by
+  // at most about 5u P. Beyond 16u P (with margin, and far from underflow) the sign is sure.
+  {
+    const double(*m)[3] = hi;
+    const double m0 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    const double m1 = m[1][0] * m[2][2] - m[1][2] * m[2][0];
+    const double m2 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    const double det = m[0][0] * m0 - m[0][1] * m1 + m[0][2] * m2;
+    const double p0 = std::abs(m[1][1] * m[2][2]) + std::abs(m[1][2] * m[2][1]);
+    const double p1 = std::abs(m[1][0] * m[2][2]) + std::abs(m[1][2] * m[2][0]);
+    const double p2 = std::abs(m[1][0] * m[2][1]) + std::abs(m[1][1] * m[2][0]);
+    const double perm = std::abs(m[0][0]) * p0 + std::abs(m[0][1]) * p1 + std::abs(m[0][2]) * p2;
+    const double u = 1.1102230246251565e-16;  // 2^-53
+    if (perm > 1e-280 && perm < 1e280 && std::abs(det) > 16 * u * perm) return det > 0 ? 1 : -1;
+  }
   Expansion total;
   total.n = 1;
   total.c[0] = 0.0;
