@@ -55,7 +55,8 @@ const char* kFailureUsage =
     "  --double            also run DSS and GJK in double on the same (float-rounded) vertices\n"
     "  --seed S            generator seed (batch k uses seed + k)\n"
     "  --json FILE         write the JSON lines to FILE as well as to stdout\n"
-    "  --dump N            print the first N DSS / Hybrid pairs that hit the cap or are wrong\n"
+    "  --dump N            print the first N pairs of each DSS / Hybrid variant that hit the\n"
+    "                      cap or are wrong\n"
     "                      (batch, indices, vertices as hex floats) to stderr\n"
     "  --note TEXT         free text stored in the JSON (build commit, machine load)\n";
 
@@ -121,6 +122,7 @@ struct Tally {
   long long iterations = 0;
   int max_iterations = 0;
   double seconds = 0;
+  int dumped = 0;                 // pairs printed by --dump
   std::vector<long long> histogram;  // pairs by support evaluations, 0..cap
 
   void add(const Result& r, bool truth) {
@@ -153,11 +155,11 @@ int runFailureRate(int argc, char** argv) {
       if (!cfg.with_double && std::string(name).find("double") != std::string::npos) continue;
       Tally t;
       t.name = name;
+      t.dumped = 0;
       t.histogram.assign(cfg.max_iterations + 1, 0);
       tallies.push_back(t);
     }
     long long done = 0, intersecting = 0;
-    int dumped = 0;
     double reference_seconds = 0;
     for (std::uint64_t batch = 0; done < cfg.pairs; ++batch) {
       WorkloadSet w = makeWorkload(WorkloadKind::kTetrahedra, sigma, cfg.batch, cfg.seed + batch);
@@ -197,8 +199,8 @@ int runFailureRate(int argc, char** argv) {
                     : gjk ? intersectGjk(hulls[i], hulls[j], opt) : intersectHybrid(hulls[i], hulls[j], opt);
           }
           t.add(r, truth[k]);
-          if (dumped < cfg.dump && !gjk && (r.status == Status::kIterationLimit || r.intersect != truth[k])) {
-            ++dumped;
+          if (t.dumped < cfg.dump && !gjk && (r.status == Status::kIterationLimit || r.intersect != truth[k])) {
+            ++t.dumped;
             std::fprintf(stderr, "%s: batch %llu pair (%d, %d) sigma %g: answer %d exact %d status %s iterations %d\n",
                          t.name.c_str(), (unsigned long long)batch, i, j, sigma, int(r.intersect), int(truth[k]),
                          toString(r.status), r.iterations);

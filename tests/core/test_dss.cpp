@@ -336,4 +336,26 @@ BOOST_AUTO_TEST_CASE(swept_hull_of_translation) {
   BOOST_TEST(!intersect(swept, high_wall).intersect);
 }
 
+// A pair from the 10^8-pair failure-rate run (batch 143, pair 604/849, float-rounded vertices):
+// its polygon goes through a thin lune (poles nearly opposite). An earlier lune centre left
+// the lune there and DSS repeated the same step until the cap in double and exact mode.
+BOOST_AUTO_TEST_CASE(thin_lune_pair_terminates) {
+  const double v[24] = {0x1.c5c1ecp+0, -0x1.6a29a8p-5, 0x1.707a74p-1, 0x1.acb3f2p-1, -0x1.b08dbcp-1, -0x1.e87a58p-2,
+                        0x1.090644p+0, 0x1.92a31ep-2,  -0x1.d63644p-1, 0x1.a4fa42p-1, 0x1.5a7282p-1, 0x1.61344ap-1,
+                        0x1.8c2646p+0, -0x1.279b58p-3, -0x1.f99558p-1, 0x1.f21bfp-1, -0x1.76cbe6p-7, 0x1.8a099ap-1,
+                        0x1.41c05p+1,  0x1.be539ap-6,  0x1.b85f2ap-2, 0x1.41bb56p+1, 0x1.778daep-3, -0x1.8faa72p-2};
+  std::vector<Vec3d> a, b;
+  for (int k = 0; k < 8; ++k) (k < 4 ? a : b).emplace_back(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+  const ConvexHull ha(a), hb(b);
+  for (Mode m : kAllModes) {
+    Options o;
+    o.mode = m;
+    o.max_iterations = 20;
+    const Result r = m == Mode::kFloat ? intersect(ha.cast<float>(), hb.cast<float>(), o) : intersect(ha, hb, o);
+    BOOST_TEST(r.intersect);  // the exact reference says they intersect
+    BOOST_TEST((r.status == Status::kDecided));
+    BOOST_TEST(r.iterations <= 10);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

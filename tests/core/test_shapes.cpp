@@ -175,6 +175,46 @@ BOOST_AUTO_TEST_CASE(spherical_polygon_invariants) {
   BOOST_TEST(polygons > 1000);
 }
 
+// A lune whose poles are nearly opposite is a thin wedge; its centre must stay strictly
+// inside however thin it is (the sum -(p0/|p0| + p1/|p1|) cancels there, and with approximate
+// normalisation it left the lune: DSS then stalled until its cap on one tetrahedron pair in
+// 10^8). Poles at angles pi - eps from each other, eps from 1e-1 down to 1e-10 in double and
+// 1e-5 in float (below that the poles are opposite within float rounding), random scales.
+template <class W>
+void checkThinLunes(double min_log_eps) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> scale(-3, 3);
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Vec3d a = Vec3d(g(rng), g(rng), g(rng)).normalized();
+    Vec3d perp = a.cross(Vec3d(g(rng), g(rng), g(rng))).normalized();
+    const double eps = std::pow(10.0, -1.0 - (min_log_eps - 1.0) * (trial % 100) / 99.0);
+    const Vec3d b = -(std::cos(eps) * a + std::sin(eps) * perp);
+    auto pole = [&](const Vec3d& v) {
+      detail::Pole<W> p;
+      p.hi = (v * std::pow(10.0, scale(rng))).template cast<W>();
+      p.lo.setZero();
+      p.norm = detail::SphericalPolygon<W, false>::normBound(p.hi);
+      return p;
+    };
+    detail::SphericalPolygon<W, false> poly;
+    poly.init(pole(a));
+    const auto q = pole(b);
+    if (poly.clip(q) != detail::ClipResult::kChanged || poly.size() != 2) continue;
+    const Vec3<W> c = poly.center();
+    ++checked;
+    BOOST_TEST_REQUIRE(c.dot(poly.pole(0).hi) < W(0), "eps " << eps);
+    BOOST_TEST_REQUIRE(c.dot(poly.pole(1).hi) < W(0), "eps " << eps);
+  }
+  BOOST_TEST(checked > 2000);
+}
+
+BOOST_AUTO_TEST_CASE(thin_lune_centre_stays_inside) {
+  checkThinLunes<double>(10);
+  checkThinLunes<float>(5);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 // The hull scan (SIMD lanes over coordinate arrays padded with copies of the last point)

@@ -16,7 +16,7 @@
 #include "dss/core/exact_predicates.h"
 #include "dss/core/types.h"
 
-#if defined(__SSE__) || defined(_M_X64)
+#if (defined(__SSE__) || defined(_M_X64)) && !defined(DSS_NO_RSQRT)
 #include <xmmintrin.h>
 #define DSS_HAVE_RSQRT 1
 #endif
@@ -65,12 +65,27 @@ class SphericalPolygon {
   /// unit vertices (the paper's renormalised average), or the middle of a lune.
   DSS_INLINE Vec3<W> center() const {
     if (count_ == 1) return -poles_[0].hi;
-    if (count_ == 2)  // -(p0/|p0| + p1/|p1|)
-      return -(poles_[0].hi * approxInvSqrt(poles_[0].hi.squaredNorm()) +
-               poles_[1].hi * approxInvSqrt(poles_[1].hi.squaredNorm()));
+    if (count_ == 2) return centerLune();
     Vec3<W> s = unit_[0];
     for (int i = 1; i < count_; ++i) s += unit_[i];
     return s;
+  }
+
+  /// The middle of the lune {w : w.p0 < 0, w.p1 < 0}: a positive combination of two points of
+  /// the closed lune, so that the approximate weights of approxInvSqrt cannot push it out.
+  /// With p0.p1 >= 0 (a lune at least a quarter-sphere wide) -p0 and -p1 lie in it: the
+  /// direction is -(p0/|p0| + p1/|p1|). Otherwise (a thin lune, poles nearly opposite, where
+  /// that sum cancels) its two boundary arcs' midpoints p0 x v and v x p1 (v = p0 x p1) lie in
+  /// it and do not cancel.
+  DSS_INLINE Vec3<W> centerLune() const {
+    const Vec3<W>& p0 = poles_[0].hi;
+    const Vec3<W>& p1 = poles_[1].hi;
+    const Vec3<W>& v = unit_[0];
+    if (p0.dot(p1) < W(0) && !v.isZero(0)) {
+      const Vec3<W> a = p0.cross(v), b = v.cross(p1);
+      return a * approxInvSqrt(a.squaredNorm()) + b * approxInvSqrt(b.squaredNorm());
+    }
+    return -(p0 * approxInvSqrt(p0.squaredNorm()) + p1 * approxInvSqrt(p1.squaredNorm()));
   }
 
   /// An upper bound of |hi| without a square root.
