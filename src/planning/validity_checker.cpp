@@ -154,7 +154,7 @@ bool DssValidityChecker::collidesPadded(const double* q, const Eigen::Isometry3d
                                       settings_.options, self_padding, settings_.algorithm));
       },
       obb_stage_);
-  slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
+  if (tests) slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   if (cap) slot().cap_hits.fetch_add(1, std::memory_order_relaxed);
   return hit;
 }
