@@ -8,7 +8,9 @@
 
 // The query loop is a handful of small functions (support, polygon update); compilers
 // sometimes leave them out of line, and the call boundary then spills every vector to memory.
-#if defined(__GNUC__) || defined(__clang__)
+// Sanitizer builds (and DSS_NO_FORCE_INLINE) leave the choice to the compiler: forcing the
+// whole search into every shape pair's instantiation makes instrumented builds very slow.
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__) && !defined(DSS_NO_FORCE_INLINE)
 #define DSS_INLINE inline __attribute__((always_inline))
 #else
 #define DSS_INLINE inline
