@@ -99,7 +99,6 @@ struct Difference {
     }
     return lo;
   }
-
 };
 
 /// Exact sign of h_A(n) + h_B(-n) for two world-vertex hulls; on return (if >= 0) pa, pb are
