@@ -113,6 +113,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       e.source = &ce;
       elementSphere(ce, &e.center_L, &e.radius);
       localBox(ce.shape, &e.box_center_S, &e.box_half);
+      e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);
@@ -191,11 +192,19 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {
-    for (int o : slot_obstacles[s]) {
-      slots_[s].obstacles.push_back(new_index[o]);
-      slots_[s].boxes.push_back(boxes_[new_index[o]]);
-    }
-    scene_pairs_ += slots_[s].obstacles.size();
+    Slot& slot = slots_[s];
+    for (int o : slot_obstacles[s]) slot.obstacles.push_back(new_index[o]);
+    const std::size_t n = slot.obstacles.size();
+    slot.box_stride = n + (n & 1);  // the sweep reads pairs
+    const double inf = std::numeric_limits<double>::infinity();
+    slot.box_soa.assign(6 * slot.box_stride, 0.0);
+    for (std::size_t i = 0; i < slot.box_stride; ++i)
+      for (int a = 0; a < 3; ++a) {
+        // padding: an empty box (lower +inf, upper -inf) is infinitely far from every point
+        slot.box_soa[a * slot.box_stride + i] = i < n ? boxes_[slot.obstacles[i]].lower[a] : inf;
+        slot.box_soa[(3 + a) * slot.box_stride + i] = i < n ? boxes_[slot.obstacles[i]].upper[a] : -inf;
+      }
+    scene_pairs_ += n;
   }
   buildSelfTables(options);
 }

@@ -175,6 +175,48 @@ BOOST_AUTO_TEST_CASE(many_points_climb_and_agree_with_scan) {
   }
 }
 
+// Cells of the climbing cube map whose support vertex is certified answer without a dot
+// product: on a robot-sized hull most of them are, and the answer must still be a maximiser
+// for every direction, including directions on cell corners and edges, within rounding of
+// them, and far from unit length.
+BOOST_AUTO_TEST_CASE(certified_cells_give_maximisers) {
+  std::mt19937_64 rng(11);
+  std::vector<Vector3d> pts;
+  for (int i = 0; i < 150; ++i) {
+    const Vector3d u = randomUnit(rng);
+    pts.push_back(Vector3d(0.05 * u.x(), 0.08 * u.y(), 0.15 * u.z()) + Vector3d(0.01, -0.02, 0.1));
+  }
+  const auto hull = dss::mesh::convexHull(pts, "ellipsoid");
+  BOOST_TEST_REQUIRE(hull.climbs());
+  const std::size_t cells = 6 * dss::kSeedGrid * dss::kSeedGrid;
+  BOOST_TEST(hull.certifiedCells() > cells / 4, hull.certifiedCells() << " of " << cells << " certified");
+  BOOST_TEST(hull.certifiedCells() < cells);
+  auto check = [&](const Vector3d& d) {
+    BOOST_TEST_REQUIRE(hull.points()[hull.supportIndex(d)].dot(d) == maxSupport(hull.points(), d), "d = " << d.transpose());
+  };
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int G = dss::kSeedGrid;
+  for (int face = 0; face < 6; ++face)
+    for (int i = 0; i <= G; ++i)
+      for (int j = 0; j <= G; ++j)
+        for (const double eps : {0.0, 1e-15, -1e-15, 1e-9, -1e-9}) {
+          const int k = face / 2;
+          Vector3d d;
+          d[k] = face % 2 ? -1.0 : 1.0;
+          d[(k + 1) % 3] = -1.0 + 2.0 * i / G + eps;
+          d[(k + 2) % 3] = -1.0 + 2.0 * j / G - eps;
+          check(d);
+          check(1e-200 * d);
+          check(1e200 * d);
+        }
+  for (int n = 0; n < 20000; ++n) check(Vector3d(unit(rng), unit(rng), unit(rng)));
+  // Zero and non-finite directions: some vertex, no crash.
+  for (const Vector3d& d : {Vector3d(0, 0, 0), Vector3d(NAN, 0, 1), Vector3d(INFINITY, 1, 0)}) {
+    const int v = hull.supportIndex(d);
+    BOOST_TEST((v >= 0 && v < int(hull.size())));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(degenerate_sets_fall_back_to_points) {
   dss::mesh::HullInfo info;
   // flat square with a duplicate and an interior point

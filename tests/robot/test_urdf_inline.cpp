@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <unistd.h>
 
 #include "dss/robot/collision_pairs.h"
@@ -158,6 +159,47 @@ BOOST_AUTO_TEST_CASE(general_axes_and_mimic_chains) {
   BOOST_TEST((X[m.linkIndex("b")].matrix() - b.matrix()).norm() < 1e-14);
   BOOST_TEST((X[m.linkIndex("c")].matrix() - c.matrix()).norm() < 1e-14);
   BOOST_TEST((X[m.linkIndex("d")].matrix() - d.matrix()).norm() < 1e-14);
+}
+
+// Kinematics evaluates the sines and cosines of a state in blocks of 32 joints: a chain longer
+// than one block, with axes along +-x, +-y, +-z and angles in every quadrant, against poses
+// composed with Eigen's AngleAxis.
+BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
+  const int n = 75;
+  const char* axes[6] = {"1 0 0", "0 1 0", "0 0 1", "-1 0 0", "0 -1 0", "0 0 -1"};
+  const Vector3d axis_v[6] = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ(),
+                              -Vector3d::UnitX(), -Vector3d::UnitY(), -Vector3d::UnitZ()};
+  std::string urdf = "<robot name=\"chain\"><link name=\"l0\"/>\n";
+  for (int i = 1; i <= n; ++i) {
+    urdf += "<link name=\"l" + std::to_string(i) +
+            "\"><collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>\n";
+    // every fifth joint fixed, so that fixed joints are folded between rotating ones
+    const bool fixed = i % 5 == 0;
+    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" + (fixed ? "fixed" : "continuous") +
+            "\"><parent link=\"l" + std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+            "\"/><origin xyz=\"0.1 0.02 0.03\" rpy=\"0.3 -0.2 0.1\"/><axis xyz=\"" + axes[i % 6] +
+            "\"/></joint>\n";
+  }
+  urdf += "</robot>";
+  const auto m = dss::loadUrdf(write("chain.urdf", urdf));
+  const dss::Kinematics kin(m);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> angle(-20.0, 20.0);
+  Eigen::Matrix3d R_o = (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.2, Vector3d::UnitY()) *
+                         Eigen::AngleAxisd(0.3, Vector3d::UnitX())).toRotationMatrix();
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<double> q(m.numActiveJoints());
+    for (double& v : q) v = angle(rng);
+    const auto X = kin.linkPoses(q);
+    Isometry3d ref = Isometry3d::Identity();
+    for (int i = 1; i <= n; ++i) {
+      const auto& joint = m.joints[m.jointIndex("j" + std::to_string(i))];
+      ref = ref * pose(Vector3d(0.1, 0.02, 0.03), R_o);
+      if (joint.active_index >= 0) ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 6]));
+      const double err = (X[m.linkIndex("l" + std::to_string(i))].matrix() - ref.matrix()).norm();
+      BOOST_TEST_REQUIRE(err < 1e-12 * (1 + i), "link l" << i << " trial " << trial << " error " << err);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(fast_sin_cos_matches_libm) {

@@ -42,9 +42,10 @@ struct Posed {
     if constexpr (detail::RotationInvariant<S>::value) {
       return shape.support(d_W, Vec3<Scalar>::Zero()) + (p_WS - shift);
     }
-    const Vec3<Scalar> d_S = R_WS.transpose() * d_W;
+    // Written out: GCC leaves Eigen's fixed-size products out of line here (a call each way).
+    const Vec3<Scalar> d_S(R_WS.col(0).dot(d_W), R_WS.col(1).dot(d_W), R_WS.col(2).dot(d_W));
     const Vec3<Scalar> x_S = shape.support(d_S, Vec3<Scalar>::Zero());
-    return R_WS * x_S + (p_WS - shift);
+    return (R_WS.col(0) * x_S.x() + R_WS.col(1) * x_S.y() + R_WS.col(2) * x_S.z()) + (p_WS - shift);
   }
   Vec3<Scalar> center() const {
     if constexpr (detail::CenteredAtOrigin<S>::value) return p_WS;

@@ -33,7 +33,9 @@
 // takes the normal path. The tables never change an answer, only its cost.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -41,6 +43,9 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "dss/robot/collision_pairs.h"
 #include "dss/robot/kinematics.h"
@@ -115,6 +120,7 @@ class CollisionModel {
     /// (half extents box_half): the oriented-box stage of the sweep.
     Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
     Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+    bool identity_LS = false;     ///< source->X_LS is exactly the identity (X_WS = X_WL)
   };
   /// A link with geometry.
   struct Slot {
@@ -125,7 +131,10 @@ class CollisionModel {
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere of all elements
     double radius = 0.0;
     std::vector<int> obstacles;   ///< kept obstacles this slot is checked against
-    std::vector<Aabb> boxes;      ///< their world boxes, in the same order (contiguous for the sweep)
+    /// Their world boxes in the same order, as six arrays (lower x, y, z, upper x, y, z) of
+    /// box_stride values each, padded with empty boxes: the sweep tests two at a time.
+    std::vector<double> box_soa;
+    std::size_t box_stride = 0;
     /// Reach ball in the world (moving slots): every pose of the link stays inside.
     Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
     double reach_radius = 0.0;
@@ -252,6 +261,42 @@ inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
   const Eigen::Vector3d d = (b.lower - p).cwiseMax(p - b.upper).cwiseMax(0.0);
   return d.squaredNorm();
 }
+
+/// Bit i (i < n <= 64) set when box begin + i of a Slot's box_soa (six arrays of `stride`
+/// values, n rounded up to even within them) is not farther than sqrt(r2) from c, or when the
+/// distance is NaN: a set bit means "test further", so NaN is never a skip.
+inline std::uint64_t sphereBoxHits(const double* soa, std::size_t stride, std::size_t begin, std::size_t n,
+                                   const Eigen::Vector3d& c, double r2) {
+  std::uint64_t hits = 0;
+  const double* lx = soa + begin;
+  const double* ly = lx + stride;
+  const double* lz = ly + stride;
+  const double* ux = lz + stride;
+  const double* uy = ux + stride;
+  const double* uz = uy + stride;
+#if defined(__SSE2__)
+  const __m128d cx = _mm_set1_pd(c.x()), cy = _mm_set1_pd(c.y()), cz = _mm_set1_pd(c.z());
+  const __m128d zero = _mm_setzero_pd(), rr = _mm_set1_pd(r2);
+  // max(0, t) keeps a NaN t (maxpd returns its second operand when one is NaN).
+  auto axis = [&](const double* lo, const double* up, std::size_t i, __m128d ci) {
+    const __m128d d = _mm_max_pd(_mm_sub_pd(ci, _mm_loadu_pd(up + i)), _mm_max_pd(zero, _mm_sub_pd(_mm_loadu_pd(lo + i), ci)));
+    return _mm_mul_pd(d, d);
+  };
+  for (std::size_t i = 0; i < n; i += 2) {
+    const __m128d d2 = _mm_add_pd(_mm_add_pd(axis(lx, ux, i, cx), axis(ly, uy, i, cy)), axis(lz, uz, i, cz));
+    hits |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmpngt_pd(d2, rr))) << i;
+  }
+  return hits & (n == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << n) - 1);
+#else
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = std::max(0.0, std::max(lx[i] - c.x(), c.x() - ux[i]));
+    const double dy = std::max(0.0, std::max(ly[i] - c.y(), c.y() - uy[i]));
+    const double dz = std::max(0.0, std::max(lz[i] - c.z(), c.z() - uz[i]));
+    if (!(dx * dx + dy * dy + dz * dz > r2)) hits |= std::uint64_t(1) << i;
+  }
+  return hits;
+#endif
+}
 }  // namespace detail
 
 template <class SceneNarrow, class SelfNarrow>
@@ -272,31 +317,34 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   // Robot vs scene.
   for (std::size_t k = 0; k < slots_.size(); ++k) {
     const Slot& s = slots_[k];
-    if (s.obstacles.empty()) continue;
+    const std::size_t nb = s.obstacles.size();
+    if (nb == 0) continue;
     const Eigen::Isometry3d& X = X_WL[s.link];
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
-    const double r2 = r * r;
-    const Aabb* bx = s.boxes.data();
-    const std::size_t nb = s.boxes.size();
-    for (std::size_t i = 0; i < nb; ++i) {
-      const Aabb& box = bx[i];
-      if (detail::sqDistPointAabb(c, box) > r2) continue;
-      const int o = s.obstacles[i];
-      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-        const Element& el = elements_[e];
-        if (s.num_elements > 1) {
-          const double re = el.radius + scene_padding;
-          if (detail::sqDistPointAabb(X * el.center_L, box) > re * re) continue;
+    for (std::size_t begin = 0; begin < nb; begin += 64) {
+      const std::size_t n = std::min<std::size_t>(64, nb - begin);
+      for (std::uint64_t hits = detail::sphereBoxHits(s.box_soa.data(), s.box_stride, begin, n, c, r * r); hits;
+           hits &= hits - 1) {
+        const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
+        const int o = s.obstacles[i];
+        for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+          const Element& el = elements_[e];
+          if (s.num_elements > 1) {
+            const double re = el.radius + scene_padding;
+            if (detail::sqDistPointAabb(X * el.center_L, boxes_[o]) > re * re) continue;
+          }
+          Eigen::Isometry3d X_prod;
+          if (!el.identity_LS) X_prod = X * el.source->X_LS;
+          const Eigen::Isometry3d& X_WS = el.identity_LS ? X : X_prod;
+          if (obb_stage) {
+            const Obb& ob = obbs_[o];
+            if (detail::obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
+                                 scene_padding))
+              continue;
+          }
+          if (scene(e, X_WS, o)) return true;
         }
-        const Eigen::Isometry3d X_WS = X * el.source->X_LS;
-        if (obb_stage) {
-          const Obb& ob = obbs_[o];
-          if (detail::obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
-                               scene_padding))
-            continue;
-        }
-        if (scene(e, X_WS, o)) return true;
       }
     }
   }

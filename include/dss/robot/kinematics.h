@@ -50,15 +50,22 @@ class Kinematics {
     int ref;  // computed link whose pose this one starts from; -1: the base pose
     Eigen::Matrix3d R_c;  // constant transform from ref to the joint frame
     Eigen::Vector3d p_c;
-    bool rotates;  // R_c is not exactly the identity
+    enum class Frame : unsigned char { kIdentity, kSignedPermutation, kGeneral } frame;
+    int perm[3];           // kSignedPermutation: column j of R_c is sign[j] * e_perm[j]
+    double sign[3];
+    unsigned char p_nonzero;  // bit k: p_c[k] != 0
     Motion motion;
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int q_index;           // active joint index read
     double multiplier;     // sign of an axis-aligned axis, times the mimic multiplier
     double offset;         // mimic offset times the same sign
+    int trig;              // kRotX/Y/Z: index into trig_steps_; else -1
   };
 
+  static void classifyConstantFrame(Step* s);
+
   std::vector<Step> steps_;
+  std::vector<int> trig_steps_;  // steps with an axis-aligned rotation, in order
   std::vector<int> updated_;
   struct JointRef {  // copied, so that a Kinematics does not point into its model
     int active_index;
