@@ -10,8 +10,8 @@
 // the same support vertex, each beating every other vertex by a relative margin far above
 // rounding, is certified: every direction in the cell is a non-negative combination of its
 // corners, so that vertex is the unique maximiser for all of them (normal cones are convex),
-// and the support returns it without a single dot product. (Panda link hulls, 102-152
-// vertices, kSeedGrid 16: 554-732 of the 1536 cells; a support there costs one lookup.) `kHillClimbMinVertices` is where
+// and the support returns it without a single dot product (Panda link hulls, 102-152
+// vertices, kSeedGrid 16: 554-732 of the 1536 cells). `kHillClimbMinVertices` is where
 // climbing starts to pay (measured by `dss_bench narrowphase --sweep`; FCL, coal and CGAL
 // switch near 32; on our machines the scan still wins at 32 and they break even near 48).
 //
@@ -158,6 +158,10 @@ class ConvexHullT {
   const std::vector<Vec3<T>>& points() const { return points_; }
   std::size_t size() const { return points_.size(); }
   bool climbs() const { return climbs_; }
+  /// Cube-map cells whose support vertex is certified (for tests and reports).
+  std::size_t certifiedCells() const {
+    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c < 0; }));
+  }
 
   /// Index of a point maximising d·x (the first of equal values in a linear scan).
   DSS_INLINE int supportIndex(const Vec3<T>& d) const {
@@ -268,14 +272,6 @@ class ConvexHullT {
         }
   }
 
-
- public:
-  /// Cube-map cells whose support vertex is certified (for tests and reports).
-  std::size_t certifiedCells() const {
-    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c < 0; }));
-  }
-
- private:
   // The cube-map cell of d: its largest coordinate picks the face, the two others divided by
   // it the cell. Any vertex is a correct start; this one is usually the answer or next to it.
   int seed(const Vec3<T>& d) const {
