@@ -217,6 +217,22 @@ BOOST_AUTO_TEST_CASE(certified_cells_give_maximisers) {
   }
 }
 
+// A hull with so many vertices that some cube-map cells hold more candidates than they keep:
+// those cells climb along hull edges, and every answer is still a maximiser.
+BOOST_AUTO_TEST_CASE(crowded_cells_climb) {
+  std::mt19937_64 rng(13);
+  std::vector<Vector3d> pts;
+  for (int i = 0; i < 6000; ++i) pts.push_back(randomUnit(rng));
+  const auto hull = dss::mesh::convexHull(pts, "sphere");
+  BOOST_TEST_REQUIRE(hull.climbs());
+  BOOST_TEST(hull.climbingCells() > 0u);
+  BOOST_TEST(hull.climbingCells() < 6u * dss::kSeedGrid * dss::kSeedGrid);
+  for (int n = 0; n < 5000; ++n) {
+    const Vector3d d = randomUnit(rng);
+    BOOST_TEST_REQUIRE(hull.points()[hull.supportIndex(d)].dot(d) == maxSupport(hull.points(), d));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(degenerate_sets_fall_back_to_points) {
   dss::mesh::HullInfo info;
   // flat square with a duplicate and an interior point

@@ -3,17 +3,24 @@
 // One point, two points, coplanar sets and full 3-D sets all work: the support function of
 // conv(V) is max over V, so no hull construction is needed for correctness. Few points are
 // scanned linearly; for many points a caller that knows the hull's vertex adjacency (the
-// robot loader computes it with qhull) can hand it over, and the support then hill-climbs
-// along hull edges from a seed vertex looked up in a cube map of directions (6 faces of
-// kSeedGrid x kSeedGrid cells, each holding the support vertex of its centre direction, so
-// that a climb usually takes zero to two steps). A cell whose four corner directions all have
-// the same support vertex, each beating every other vertex by a relative margin far above
-// rounding, is certified: every direction in the cell is a non-negative combination of its
-// corners, so that vertex is the unique maximiser for all of them (normal cones are convex),
-// and the support returns it without a single dot product (Panda link hulls, 102-152
-// vertices, kSeedGrid 16: 554-732 of the 1536 cells). `kHillClimbMinVertices` is where
-// climbing starts to pay (measured by `dss_bench narrowphase --sweep`; FCL, coal and CGAL
-// switch near 32; on our machines the scan still wins at 32 and they break even near 48).
+// robot loader computes it with qhull) can hand it over, and the support then looks its
+// direction up in a cube map (6 faces of kSeedGrid x kSeedGrid cells) built once:
+//  - a cell whose four corner directions all have the same support vertex, each beating every
+//    other vertex by a relative margin far above rounding, is certified: every direction in
+//    the cell is a non-negative combination of its corners, so that vertex is the unique
+//    maximiser for all of them (normal cones are convex), and the support returns it without
+//    a single dot product;
+//  - any other cell keeps the short list of vertices that beat its centre's support vertex b
+//    somewhere in the (slightly grown) cell, max over d in the cell of (x - b).d >= 0: the
+//    maximiser of every direction in the cell is among them, and the support takes the best
+//    of them (2-4 dot products, no branch per vertex). A list longer than kMaxCandidates
+//    (a hull with very many vertices) climbs along hull edges from b instead.
+// Panda link hulls (102-152 vertices, kSeedGrid 16): 554-732 of the 1536 cells certified,
+// most others list 2-4 vertices; random directions took 36-48 ns per support against 46-59
+// ns when climbing from the centre's vertex (same process, interleaved).
+// `kHillClimbMinVertices` is where climbing starts to pay (measured by `dss_bench narrowphase
+// --sweep`; FCL, coal and CGAL switch near 32; on our machines the scan still wins at 32 and
+// they break even near 48).
 //
 // Points given in world coordinates are returned bit for bit by `support` (with a zero
 // shift), so the exact mode decides such pairs exactly.
@@ -162,6 +169,10 @@ class ConvexHullT {
   std::size_t certifiedCells() const {
     return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c < 0; }));
   }
+  /// Cube-map cells with too many candidates, which climb (for tests and reports).
+  std::size_t climbingCells() const {
+    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c >= 0 && (c & 0xff) == 0; }));
+  }
 
   /// Index of a point maximising d·x (the first of equal values in a linear scan).
   DSS_INLINE int supportIndex(const Vec3<T>& d) const {
@@ -224,6 +235,7 @@ class ConvexHullT {
     // Seeds for climbing: the support vertex of the centre direction of every cube-map cell,
     // or -1 - v for a cell certified to have support vertex v throughout (see the top).
     seeds_.clear();
+    candidates_.clear();
     if (offsets_.empty()) return;
     seeds_.resize(6 * kSeedGrid * kSeedGrid);
     constexpr int G = kSeedGrid;
@@ -266,21 +278,57 @@ class ConvexHullT {
           int& cell = seeds_[(face * G + i) * G + j];
           if (v >= 0 && c(1, 0) == v && c(0, 1) == v && c(1, 1) == v) {
             cell = -1 - v;
-          } else {
-            cell = scan(direction(face, T(-1) + T(2 * i + 1) / T(G), T(-1) + T(2 * j + 1) / T(G)));
+            continue;
           }
+          // Candidates: every vertex that beats the centre's support vertex b for some
+          // direction of the (slightly grown) cell; the maximiser of any direction in the cell
+          // is among them. Over the cell d = c + (0, du, dw) in face coordinates with
+          // |du|, |dw| <= 1/G, so max (x - b).d = (x - b).c + (|x_a - b_a| + |x_b - b_b|) / G.
+          const Vec3<T> centre = direction(face, T(-1) + T(2 * i + 1) / T(G), T(-1) + T(2 * j + 1) / T(G));
+          const int b = scan(centre);
+          const int k = face / 2, a1 = (k + 1) % 3, a2 = (k + 2) % 3;
+          const T half = T(1.000001) / T(G);
+          const T tol = T(1e-9) * (magnitude_ + T(1e-30));
+          std::vector<int> list{b};
+          for (std::size_t x = 0; x < n; ++x) {
+            if (static_cast<int>(x) == b) continue;
+            const Vec3<T> diff = points_[x] - points_[b];
+            if (diff.dot(centre) + half * (std::abs(diff[a1]) + std::abs(diff[a2])) >= -tol)
+              list.push_back(static_cast<int>(x));
+          }
+          if (list.size() == 1) {  // b beats every other vertex throughout the cell
+            cell = -1 - b;
+            continue;
+          }
+          if (list.size() > kMaxCandidates) list.resize(1);  // rare: climb from b instead
+          cell = (static_cast<int>(candidates_.size()) << 8) | static_cast<int>(list.size() == 1 ? 0 : list.size());
+          candidates_.insert(candidates_.end(), list.begin(), list.end());
         }
   }
 
-  // The cube-map cell of d: its largest coordinate picks the face, the two others divided by
-  // it the cell. Any vertex is a correct start; this one is usually the answer or next to it.
+  // The first maximiser of d.x among the count (>= 2) candidates of a cell.
+  DSS_INLINE int bestCandidate(const int* list, int count, const Vec3<T>& d) const {
+    int best = list[0];
+    T best_value = points_[best].dot(d);
+    for (int k = 1; k < count; ++k) {
+      const int j = list[k];
+      const T v = points_[j].dot(d);
+      const bool up = v > best_value;
+      best = up ? j : best;
+      best_value = up ? v : best_value;
+    }
+    return best;
+  }
+
+  // The cube-map entry of d's cell: its largest coordinate picks the face, the two others
+  // divided by it the cell. Zero and non-finite directions get vertex 0.
   int seed(const Vec3<T>& d) const {
     const T ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
     int k = 0;
     T m = ax;
     if (ay > m) k = 1, m = ay;
     if (az > m) k = 2, m = az;
-    if (!(m > T(0)) || !(m < std::numeric_limits<T>::infinity())) return 0;  // zero, NaN, Inf
+    if (!(m > T(0)) || !(m < std::numeric_limits<T>::infinity())) return -1;
     const int a = (k + 1) % 3, b = (k + 2) % 3;
     const T scale = T(0.5 * kSeedGrid) / m;
     int i = static_cast<int>((d[a] + m) * scale);
@@ -292,8 +340,12 @@ class ConvexHullT {
   }
 
   int climb(const Vec3<T>& d) const {
-    int best = seed(d);
-    if (best < 0) return -1 - best;  // certified cell
+    const int entry = seed(d);
+    if (entry < 0) return -1 - entry;  // certified cell
+    const int count = entry & 0xff;
+    const int* list = candidates_.data() + (entry >> 8);
+    if (count > 0) return bestCandidate(list, count, d);
+    int best = list[0];  // too many candidates: climb from the centre's vertex
     T best_value = points_[best].dot(d);
     // Strict increase only: terminates, and on a convex polytope a vertex with no better
     // neighbour maximises d·x up to rounding.
@@ -321,7 +373,10 @@ class ConvexHullT {
   std::vector<int> adjacency_;
   Vec3<T> center_ = Vec3<T>::Zero();
   T magnitude_{0};
-  std::vector<int> seeds_;      // cube map of climbing seeds (with adjacency only)
+  std::vector<int> seeds_;      // cube map (with adjacency only): -1 - vertex, or candidates
+  // Candidate vertex lists of the uncertified cells (seeds_ holds offset << 8 | count).
+  static constexpr std::size_t kMaxCandidates = 16;
+  std::vector<int> candidates_;
 };
 
 using ConvexHull = ConvexHullT<double>;
