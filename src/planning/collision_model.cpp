@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "dss/core/any_shape_query.h"
+#include "dss/mesh/mesh.h"
 
 namespace dss {
 
@@ -56,6 +57,82 @@ void localBox(const AnyShape& shape, Eigen::Vector3d* c, Eigen::Vector3d* h) {
     *h = 0.5 * (hi - lo);
   }
   *h += Eigen::Vector3d::Constant(1e-9 * (1.0 + h->maxCoeff() + c->cwiseAbs().maxCoeff()));
+}
+
+// Up to Element::kMaxInner balls inside the shape (centre in the shape frame, radius), placed
+// along the longest axis of its box (box_c, box_h). The radius of a ball at c is the distance
+// from c to the shape's boundary: for a hull the smallest distance to its facet planes (qhull
+// triangles, oriented outwards). It is then reduced by a relative 1e-7 of the shape's size,
+// far above the rounding of the planes, and every kept ball is checked against the support
+// function in the facet normals and 26 fixed directions.
+int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
+               Eigen::Vector4d* out, int max_out) {
+  std::vector<Eigen::Vector4d> planes;  // n, d with n.x <= d inside
+  if (const auto* hull = std::get_if<ConvexHull>(&shape)) {
+    if (!hull->climbs() && hull->size() < 4) return 0;
+    const mesh::TriangleMesh m = mesh::tessellate(shape);
+    if (m.triangles.empty()) return 0;  // flat or degenerate: no interior
+    const Eigen::Vector3d centroid = hull->center();
+    for (const auto& t : m.triangles) {
+      const Eigen::Vector3d& a = m.vertices[t[0]];
+      Eigen::Vector3d n = (m.vertices[t[1]] - a).cross(m.vertices[t[2]] - a);
+      const double len = n.norm();
+      if (!(len > 0.0)) continue;
+      n /= len;
+      if (n.dot(centroid - a) > 0.0) n = -n;
+      planes.emplace_back(n.x(), n.y(), n.z(), n.dot(a));
+    }
+  }
+  auto radius = [&](const Eigen::Vector3d& c) -> double {
+    if (const auto* s = std::get_if<Sphere>(&shape)) return s->radius - c.norm();
+    if (const auto* b = std::get_if<Box>(&shape)) return (b->half - c.cwiseAbs()).minCoeff();
+    if (const auto* y = std::get_if<Cylinder>(&shape))
+      return std::min(y->radius - c.head<2>().norm(), y->half_length - std::abs(c.z()));
+    if (const auto* k = std::get_if<Capsule>(&shape))
+      return k->radius - Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
+    if (const auto* e = std::get_if<Ellipsoid>(&shape)) return e->radii.minCoeff() - c.norm();
+    if (std::holds_alternative<ConvexHull>(shape)) {
+      double r = std::numeric_limits<double>::infinity();
+      for (const auto& p : planes) r = std::min(r, p.w() - p.head<3>().dot(c));
+      return r;
+    }
+    return -1.0;  // cone: no inner balls
+  };
+  const double size = shapeMagnitude(shape) + box_c.norm();
+  const double shrink = 1e-7 * size + 1e-12;
+  int axis = 0;
+  box_h.maxCoeff(&axis);
+  std::vector<Eigen::Vector4d> cand;
+  for (int i = -8; i <= 8; ++i) {
+    Eigen::Vector3d c = box_c;
+    c[axis] += 0.1 * i * box_h[axis];
+    const double r = radius(c) - shrink;
+    if (r > 0.05 * box_h.maxCoeff()) cand.emplace_back(c.x(), c.y(), c.z(), r);
+  }
+  std::sort(cand.begin(), cand.end(), [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return a.w() > b.w(); });
+  // Directions to check each ball against the support function: a ball inside the shape has
+  // h(u) >= u.c + r for every unit u.
+  std::vector<Eigen::Vector3d> dirs;
+  for (const auto& p : planes) dirs.push_back(p.head<3>());
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x || y || z) dirs.push_back(Eigen::Vector3d(x, y, z).normalized());
+  int n = 0;
+  for (const auto& b : cand) {
+    if (n == max_out) break;
+    bool spread = true;
+    for (int k = 0; k < n; ++k)
+      if ((out[k].head<3>() - b.head<3>()).norm() < 0.5 * std::max(out[k].w(), b.w())) spread = false;
+    if (!spread) continue;
+    bool inside = true;
+    for (const auto& u : dirs) {
+      const double h = std::visit([&](const auto& s) { return s.support(u, Eigen::Vector3d::Zero()).dot(u); }, shape);
+      if (!(h >= u.dot(b.head<3>()) + b.w())) inside = false;
+    }
+    if (inside) out[n++] = b;
+  }
+  return n;
 }
 
 }  // namespace
@@ -114,6 +191,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       elementSphere(ce, &e.center_L, &e.radius);
       localBox(ce.shape, &e.box_center_S, &e.box_half);
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
+      e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, Element::kMaxInner);
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);
@@ -189,6 +267,14 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       b.R = ob.X_WO.linear();
       b.c = ob.X_WO * c_S;
       obbs_.push_back(b);
+      Obb inner = b;
+      if (const auto* box = std::get_if<Box>(&ob.shape)) {
+        inner.c = ob.X_WO.translation();
+        inner.h = box->half;
+      } else {
+        inner.h = Eigen::Vector3d::Constant(-1.0);
+      }
+      inner_boxes_.push_back(inner);
     }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {
@@ -236,6 +322,8 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
   const double pi = 3.141592653589793;
   std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
   std::vector<double> q = held_;
+  std::vector<char> in_group(m.numActiveJoints(), 0);
+  for (int a : group_active_) in_group.at(a) = 1;
   // Joints from a link up to (not including) the link `stop`.
   auto chainUp = [&](int link, int stop) {
     std::vector<int> out;
@@ -288,7 +376,9 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
                                       ? 1.0
                                       : J.X_PJ.translation().norm() + up_len[i + 1] + below});
     }
-    // Variables: the active joints the path joints read (mimic joints through their leader).
+    // Variables: the group joints the path joints read (mimic joints through their leader).
+    // Joints outside the group keep their held value: the table records it and answers only
+    // for states that have it.
     SelfPairTable t;
     double per_var[2] = {0.0, 0.0};
     for (const Term& term : terms) {
@@ -302,6 +392,19 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
       if (v < 0 || !std::isfinite(term.per_unit)) {
         ok = false;
         break;
+      }
+      if (!in_group[v]) {
+        int f = 0;
+        while (f < t.num_fixed && t.fixed_var[f] != v) ++f;
+        if (f == t.num_fixed) {
+          if (t.num_fixed == SelfPairTable::kMaxFixed) {
+            ok = false;
+            break;
+          }
+          t.fixed_var[t.num_fixed] = v;
+          t.fixed_value[t.num_fixed++] = held_[v];
+        }
+        continue;
       }
       int k = 0;
       while (k < t.num_vars && t.var[k] != v) ++k;

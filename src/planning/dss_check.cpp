@@ -108,6 +108,11 @@ nlohmann::json describe(const dss::Problem& p) {
       x["shape"] = dss::shapeTypeName(ce.shape);
       x["description"] = ce.description;
       if (const auto* h = std::get_if<dss::ConvexHull>(&ce.shape)) x["hull_vertices"] = h->size();
+      const auto& el = m.elements()[e];
+      json balls = json::array();  // inner balls (shape frame): x, y, z, radius
+      for (int k = 0; k < el.num_inner; ++k)
+        balls.push_back({el.inner_S[k].x(), el.inner_S[k].y(), el.inner_S[k].z(), el.inner_S[k].w()});
+      x["inner_balls"] = balls;
       els.push_back(x);
     }
     l["elements"] = els;

@@ -157,7 +157,7 @@ bool FclValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL
         ++tests;
         return pair(elements_[a].get(), X_WA, elements_[b].get(), X_WB, self_padding_);
       },
-      obb_stage_);
+      obb_stage_, /*inner_stage=*/obb_stage_ && geometry_ == FclGeometry::kHull);
   slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   return hit;
 }

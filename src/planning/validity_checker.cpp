@@ -153,7 +153,7 @@ bool DssValidityChecker::collidesPadded(const double* q, const Eigen::Isometry3d
         return decideResult(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
                                       settings_.options, self_padding, settings_.algorithm));
       },
-      obb_stage_);
+      obb_stage_, /*inner_stage=*/obb_stage_);
   if (tests) slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   if (cap) slot().cap_hits.fetch_add(1, std::memory_order_relaxed);
   return hit;

@@ -170,6 +170,28 @@ BOOST_AUTO_TEST_CASE(lookup_wraps_and_refuses_nan_inf_and_out_of_range) {
   }
 }
 
+// A table built with a joint held outside the group answers only at the held value.
+BOOST_AUTO_TEST_CASE(lookup_refuses_other_held_values) {
+  dss::SelfPairTable t;
+  t.num_vars = 1;
+  t.var[0] = 0;
+  t.lo[0] = 0.0, t.hi[0] = 1.0;
+  t.cells[0] = 2;
+  t.inv_width[0] = 2.0;
+  t.free = {dss::SelfPairTable::kFree, dss::SelfPairTable::kColliding};
+  t.num_fixed = 1;
+  t.fixed_var[0] = 2;
+  t.fixed_value[0] = 0.04;
+  double q[3] = {0.2, 0.0, 0.04};
+  BOOST_TEST(t.certifiedFree(q));
+  q[0] = 0.7;
+  BOOST_TEST(t.certifiedColliding(q));
+  for (double other : {0.0, std::nextafter(0.04, 1.0), std::numeric_limits<double>::quiet_NaN()}) {
+    q[2] = other;
+    BOOST_TEST(t.cell(q) == dss::SelfPairTable::kUnknown, "held value " << other);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(own_arm_certified_cells_are_free) {
   const auto robot = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
   const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
@@ -224,4 +246,52 @@ BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer)
                                        << ", without " << without.counters().pair_tests);
     BOOST_TEST(with.counters().pair_tests < without.counters().pair_tests);
   }
+}
+
+// With the MotionBenchMaker group (the arm; the fingers held), pairs that also depend on a
+// finger joint get tables at the held finger value: every decided cell is right there, and a
+// checker with tables answers as one without.
+BOOST_AUTO_TEST_CASE(panda_arm_group_tables_with_held_fingers) {
+  if (!fs::exists(kPanda + "/panda.urdf") || !fs::exists(kMbm + "/table_pick/request0001.yaml")) {
+    BOOST_TEST_MESSAGE("skipped: shared Panda or MotionBenchMaker scenes not found");
+    return;
+  }
+  const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
+  const dss::Scene scene = dss::loadScene(kMbm + "/table_pick/scene0001.yaml");
+  const auto req = dss::loadPlanRequestYaml(kMbm + "/table_pick/request0001.yaml");
+  const dss::Problem p = dss::makeProblem(robot, scene, req.group_name, req.startState());
+  std::size_t held_tables = 0;
+  for (const auto& t : p.model->selfTables()) held_tables += t.num_fixed > 0;
+  BOOST_TEST(held_tables >= 2u, p.model->summary());
+  const std::size_t checked = checkAllCells(p, 0.0);
+  BOOST_TEST(checked > 10000u);
+  dss::CollisionModelOptions no_tables;
+  no_tables.self_table_cells_1d = no_tables.self_table_cells_2d = 0;
+  auto bare = std::make_shared<dss::CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene,
+                                                    p.model->groupActive(), p.model->held(), no_tables);
+  std::mt19937_64 rng(12);
+  std::vector<double> q = p.model->held();
+  dss::DssValidityChecker with(p.si, p.model, p.map, {}), without(p.si, bare, p.map, {});
+  std::size_t differ = 0, invalid = 0;
+  for (int k = 0; k < 20000; ++k) {
+    for (int a : p.model->groupActive()) {
+      const auto& j = robot.model->joints[robot.model->active_joints[a]];
+      q[a] = std::uniform_real_distribution<double>(j.limits.lower, j.limits.upper)(rng);
+    }
+    // One state in four with the fingers elsewhere than held: the tables must not answer.
+    if (k % 4 == 0)
+      for (std::size_t a = 0; a < q.size(); ++a)
+        if (std::find(p.model->groupActive().begin(), p.model->groupActive().end(), int(a)) ==
+            p.model->groupActive().end()) {
+          const auto& j = robot.model->joints[robot.model->active_joints[a]];
+          q[a] = std::uniform_real_distribution<double>(j.limits.lower, j.limits.upper)(rng);
+        }
+    const bool v1 = with.isValidJoints(q.data()), v2 = without.isValidJoints(q.data());
+    differ += v1 != v2;
+    invalid += !v1;
+    if (k % 4 == 0) q = std::vector<double>(p.model->held());
+  }
+  BOOST_TEST(differ == 0u);
+  BOOST_TEST(invalid > 1000u);
+  BOOST_TEST(with.counters().pair_tests < without.counters().pair_tests);
 }

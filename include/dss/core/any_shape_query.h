@@ -37,20 +37,10 @@ Result decide(const A& a, const B& b, const Options& opt, Algorithm algo) {
 }
 
 /// Do shape a at pose X_WA and shape b at pose X_WB intersect? `padding` > 0 grows a by a
-/// ball: the answer is then "distance <= padding".
-inline Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
-                        const Eigen::Isometry3d& X_WB, const Options& opt = {},
-                        double padding = 0.0, Algorithm algo = Algorithm::kDss) {
-  return std::visit(
-      [&](const auto& sa, const auto& sb) {
-        using SA = std::decay_t<decltype(sa)>;
-        using SB = std::decay_t<decltype(sb)>;
-        const Posed<detail::Ref<SA>> pa(detail::Ref<SA>{sa}, X_WA.linear(), X_WA.translation());
-        const Posed<detail::Ref<SB>> pb(detail::Ref<SB>{sb}, X_WB.linear(), X_WB.translation());
-        if (padding > 0.0) return decide(padded(pa, padding), pb, opt, algo);
-        return decide(pa, pb, opt, algo);
-      },
-      a, b);
-}
+/// ball: the answer is then "distance <= padding". Compiled once, in the core library (every
+/// pair of shape types, every mode and algorithm): callers do not instantiate the search.
+Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
+                 const Eigen::Isometry3d& X_WB, const Options& opt = {}, double padding = 0.0,
+                 Algorithm algo = Algorithm::kDss);
 
 }  // namespace dss

@@ -17,8 +17,10 @@
 // of a state they give a cheap world-space prefilter before the exact narrow phase. The
 // narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
 //
-// Self-pair tables: when the relative pose of two links depends on one or two joint values
-// only (e.g. the Panda's link5 and link7: joints 6 and 7), the joint range is cut into cells
+// Self-pair tables: when the relative pose of two links depends on one or two group joint
+// values only (e.g. the Panda's link5 and link7: joints 6 and 7; link5 and a finger: joints 6
+// and 7 with the finger joint held outside the group -- the table then answers only for the
+// held value it was built with), the joint range is cut into cells
 // and each cell is decided once, at build time, for every value inside it. Within a cell no
 // point of one link moves more than L relative to the other (the joint's half-width times
 // the distance of the geometry from the joint; a prismatic joint moves by its half-width).
@@ -75,7 +77,7 @@ struct CollisionModelOptions {
   double self_table_padding = 0.0;
 };
 
-/// Decided cells of a self pair over the one or two joint values it depends on.
+/// Decided cells of a self pair over the one or two group joint values it depends on.
 struct SelfPairTable {
   enum Cell : unsigned char { kUnknown = 0, kFree = 1, kColliding = 2 };
   int num_vars = 0;
@@ -83,6 +85,12 @@ struct SelfPairTable {
   double lo[2] = {0, 0}, hi[2] = {0, 0}, inv_width[2] = {0, 0};
   bool wrap[2] = {false, false};  ///< continuous joint: the value is taken modulo 2 pi
   int cells[2] = {1, 1};
+  /// Joints outside the group that the pair's relative pose depends on, at the held value the
+  /// table was built with: any other value gets kUnknown.
+  static constexpr int kMaxFixed = 4;
+  int num_fixed = 0;
+  int fixed_var[kMaxFixed] = {-1, -1, -1, -1};
+  double fixed_value[kMaxFixed] = {0, 0, 0, 0};
   double padding = 0.0;
   std::vector<unsigned char> free;  ///< Cell per cell, cells[0] x cells[1], row-major
   std::size_t num_free = 0;
@@ -94,6 +102,8 @@ struct SelfPairTable {
   bool certifiedColliding(const double* q) const { return cell(q) == kColliding; }
   /// The decided state of the cell of q (kUnknown outside the range, or for NaN).
   Cell cell(const double* q) const {
+    for (int k = 0; k < num_fixed; ++k)
+      if (!(q[fixed_var[k]] == fixed_value[k])) return kUnknown;
     int idx = 0;
     for (int k = 0; k < num_vars; ++k) {
       double v = q[var[k]];
@@ -121,6 +131,12 @@ class CollisionModel {
     Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
     Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
     bool identity_LS = false;     ///< source->X_LS is exactly the identity (X_WS = X_WL)
+    /// Balls inside the element's shape (centre in the shape frame, radius; the radius already
+    /// reduced by a margin far above rounding): one of them touching an obstacle's box, or
+    /// another element's ball, proves the pair colliding without a narrow phase.
+    static constexpr int kMaxInner = 4;
+    int num_inner = 0;
+    Eigen::Vector4d inner_S[kMaxInner];
   };
   /// A link with geometry.
   struct Slot {
@@ -171,6 +187,9 @@ class CollisionModel {
     Eigen::Vector3d h = Eigen::Vector3d::Zero();
   };
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
+  /// The box of obstacle o when its shape is a box (exact half extents), else h = -1: the
+  /// inner-ball stage tests balls against it.
+  const std::vector<Obb>& obstacleInnerBoxes() const { return inner_boxes_; }
   const SelfCollisionPairs& selfPairReport() const { return self_report_; }
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 
@@ -193,10 +212,15 @@ class CollisionModel {
   /// relative safety margin against rounding) proves apart are skipped too.
   /// With `q` (the active joint values of the state, may be null) self pairs in a certified
   /// cell of their table are skipped.
+  /// With `inner_stage` (only for a narrow phase that sees the elements' own shapes -- hulls,
+  /// not the meshes inside them), a pair that survives the filters is first tested with the
+  /// elements' inner balls (Element::inner_S): a ball of a robot element within the padding of
+  /// an obstacle box or of another element's ball proves a collision, and the narrow phase is
+  /// skipped.
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                     double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
-                    bool obb_stage = true) const;
+                    bool obb_stage = true, bool inner_stage = false) const;
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
                     SceneNarrow&& scene, SelfNarrow&& self, bool obb_stage = true) const {
@@ -222,6 +246,7 @@ class CollisionModel {
   std::vector<int> table_pairs_;  ///< self pairs with a table (indices into self_pairs_)
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
+  std::vector<Obb> inner_boxes_;
   SelfCollisionPairs self_report_;
   std::size_t obstacles_before_ = 0;
   double pruned_gap_ = std::numeric_limits<double>::infinity();
@@ -255,6 +280,25 @@ inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const
     }
   }
   return false;
+}
+
+/// True when the ball (c, r) comes within `pad` of the box (rotation, centre, half extents),
+/// with a relative margin against rounding: a safe "colliding". A box with h.x() < 0 never.
+inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R, const Eigen::Vector3d& bc,
+                           const Eigen::Vector3d& h, double pad) {
+  const Eigen::Vector3d t = c - bc;
+  const Eigen::Vector3d p(R.col(0).dot(t), R.col(1).dot(t), R.col(2).dot(t));
+  const double reach = r + pad - 1e-9 * (1.0 + t.cwiseAbs().sum() + h.sum() + r);
+  if (!(reach > 0.0) || !(h.x() >= 0.0)) return false;
+  const Eigen::Vector3d d = (p.cwiseAbs() - h).cwiseMax(0.0);
+  return d.squaredNorm() < reach * reach;
+}
+
+/// True when two balls come within `pad` of each other, with a relative rounding margin.
+inline bool ballsTouch(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb, double pad) {
+  const Eigen::Vector3d t = a - b;
+  const double reach = ra + rb + pad - 1e-9 * (1.0 + t.cwiseAbs().sum() + ra + rb);
+  return reach > 0.0 && t.squaredNorm() < reach * reach;
 }
 
 inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
@@ -302,7 +346,7 @@ inline std::uint64_t sphereBoxHits(const double* soa, std::size_t stride, std::s
 template <class SceneNarrow, class SelfNarrow>
 bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
-                                  bool obb_stage) const {
+                                  bool obb_stage, bool inner_stage) const {
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
   // after the first call with a model this size).
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
@@ -343,6 +387,13 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
                                  scene_padding))
               continue;
           }
+          if (inner_stage && el.num_inner > 0) {
+            const Obb& ib = inner_boxes_[o];
+            for (int k = 0; k < el.num_inner; ++k)
+              if (detail::ballTouchesBox(X_WS * el.inner_S[k].head<3>(), el.inner_S[k].w(), ib.R, ib.c, ib.h,
+                                         scene_padding))
+                return true;
+          }
           if (scene(e, X_WS, o)) return true;
         }
       }
@@ -376,6 +427,14 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
         if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                                           X_WB * b.box_center_S, b.box_half, self_padding))
           continue;
+        if (inner_stage && a.num_inner > 0 && b.num_inner > 0)
+          for (int i = 0; i < a.num_inner; ++i) {
+            const Eigen::Vector3d ca = X_WA * a.inner_S[i].head<3>();
+            for (int j = 0; j < b.num_inner; ++j)
+              if (detail::ballsTouch(ca, a.inner_S[i].w(), X_WB * b.inner_S[j].head<3>(), b.inner_S[j].w(),
+                                     self_padding))
+                return true;
+          }
         if (self(ea, X_WA, eb, X_WB)) return true;
       }
     }
