@@ -344,11 +344,17 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
   // after the first call with a model this size).
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
-  if (q && self_padding >= 0.0)
+  // The cells are kept for the self-pair sweep below.
+  thread_local std::vector<SelfPairTable::Cell> cells;
+  if (q) {
+    if (cells.size() < self_tables_.size()) cells.resize(self_tables_.size());
     for (int k : table_pairs_) {
-      const SelfPairTable& t = self_tables_[self_pairs_[k].table];
-      if (self_padding >= t.padding && t.certifiedColliding(q)) return true;
+      const int ti = self_pairs_[k].table;
+      const SelfPairTable& t = self_tables_[ti];
+      cells[ti] = t.cell(q);
+      if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
     }
+  }
   thread_local std::vector<Eigen::Vector3d> centers;
   if (centers.size() < slots_.size()) centers.resize(slots_.size());
   for (std::size_t k = 0; k < slots_.size(); ++k) centers[k] = X_WL[slots_[k].link] * slots_[k].center_L;
@@ -397,9 +403,8 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   for (const SelfPair& p : self_pairs_) {
     if (q && p.table >= 0) {
       const SelfPairTable& t = self_tables_[p.table];
-      const SelfPairTable::Cell c = t.cell(q);
+      const SelfPairTable::Cell c = cells[p.table];
       if (c == SelfPairTable::kFree && self_padding <= t.padding) continue;
-      if (c == SelfPairTable::kColliding && self_padding >= t.padding) return true;
     }
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
@@ -410,14 +415,18 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     const bool single = sa.num_elements == 1 && sb.num_elements == 1;
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
       const Element& a = elements_[ea];
-      const Eigen::Isometry3d X_WA = XA * a.source->X_LS;
+      Eigen::Isometry3d X_prod_a;
+      if (!a.identity_LS) X_prod_a = XA * a.source->X_LS;
+      const Eigen::Isometry3d& X_WA = a.identity_LS ? XA : X_prod_a;
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
         const Element& b = elements_[eb];
         if (!single) {
           const double rr = a.radius + b.radius + self_padding;
           if ((XA * a.center_L - XB * b.center_L).squaredNorm() > rr * rr) continue;
         }
-        const Eigen::Isometry3d X_WB = XB * b.source->X_LS;
+        Eigen::Isometry3d X_prod_b;
+        if (!b.identity_LS) X_prod_b = XB * b.source->X_LS;
+        const Eigen::Isometry3d& X_WB = b.identity_LS ? XB : X_prod_b;
         if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                                           X_WB * b.box_center_S, b.box_half, self_padding))
           continue;
