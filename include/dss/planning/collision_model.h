@@ -355,11 +355,19 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
       if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
     }
   }
-  thread_local std::vector<Eigen::Vector3d> centers;
-  if (centers.size() < slots_.size()) centers.resize(slots_.size());
-  for (std::size_t k = 0; k < slots_.size(); ++k) centers[k] = X_WL[slots_[k].link] * slots_[k].center_L;
+  // (The thread-local vector and the slot count are read once: inside the loops the compiler
+  // would reload both after every store.)
+  thread_local std::vector<Eigen::Vector3d> center_store;
+  const std::size_t num_slots = slots_.size();
+  if (center_store.size() < num_slots) center_store.resize(num_slots);
+  Eigen::Vector3d* const centers = center_store.data();
+  const Slot* const slots = slots_.data();
+  for (std::size_t k = 0; k < num_slots; ++k) {
+    const Eigen::Isometry3d& X = X_WL[slots[k].link];
+    centers[k] = X.linear() * slots[k].center_L + X.translation();
+  }
   // Robot vs scene.
-  for (std::size_t k = 0; k < slots_.size(); ++k) {
+  for (std::size_t k = 0; k < num_slots; ++k) {
     const Slot& s = slots_[k];
     const std::size_t nb = s.obstacles.size();
     if (nb == 0) continue;
