@@ -178,13 +178,18 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
   int block_begin = 0, block_end = 0;
   int prev_link = -2;  // the link of the previous step, whose pose is in c0, c1, c2, p
   Eigen::Vector3d c0, c1, c2, p;
-  for (std::size_t i = 0; i < steps_.size(); ++i) {
-    const Step& s = steps_[i];
+  // The step array and its size are read once: the stores into X_WL below would otherwise make
+  // the compiler reload them every step.
+  const Step* const steps = steps_.data();
+  const std::size_t num_steps = steps_.size();
+  const int* const trig_steps = trig_steps_.data();
+  for (std::size_t i = 0; i < num_steps; ++i) {
+    const Step& s = steps[i];
     if (s.trig >= block_end) {
       block_begin = block_end;
       const int n = std::min(kTrigBlock, num_trig - block_begin);
       for (int t = 0; t < n; ++t) {
-        const Step& st = steps_[trig_steps_[block_begin + t]];
+        const Step& st = steps[trig_steps[block_begin + t]];
         v[t] = st.multiplier * q[st.q_index] + st.offset;
       }
       fastSinCosArray(v, sn, cs, n);
@@ -244,11 +249,12 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
         p += (s.multiplier * q[s.q_index] + s.offset) * (c0 * s.axis.x() + c1 * s.axis.y() + c2 * s.axis.z());
         break;
     }
-    Eigen::Matrix4d& X = X_WL[s.link].matrix();
-    X.col(0) << c0, 0.0;
-    X.col(1) << c1, 0.0;
-    X.col(2) << c2, 0.0;
-    X.col(3) << p, 1.0;
+    // Column-major 4x4, written entry by entry (the comma initializer tests alignment).
+    double* X = X_WL[s.link].matrix().data();
+    X[0] = c0.x(), X[1] = c0.y(), X[2] = c0.z(), X[3] = 0.0;
+    X[4] = c1.x(), X[5] = c1.y(), X[6] = c1.z(), X[7] = 0.0;
+    X[8] = c2.x(), X[9] = c2.y(), X[10] = c2.z(), X[11] = 0.0;
+    X[12] = p.x(), X[13] = p.y(), X[14] = p.z(), X[15] = 1.0;
     prev_link = s.link;
   }
 }
