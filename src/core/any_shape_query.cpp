@@ -4,13 +4,14 @@
 
 namespace dss {
 namespace detail {
-extern template Result intersectFirst<Sphere>(const Sphere&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<Box>(const Box&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<Capsule>(const Capsule&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<Cylinder>(const Cylinder&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<Cone>(const Cone&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<Ellipsoid>(const Ellipsoid&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
-extern template Result intersectFirst<ConvexHull>(const ConvexHull&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&, const Options&, double, Algorithm);
+// Instantiated in their own files: not here.
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Sphere)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Box)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Capsule)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Cylinder)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Cone)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(Ellipsoid)
+extern DSS_INSTANTIATE_INTERSECT_FIRST(ConvexHull)
 }  // namespace detail
 
 Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,

@@ -69,7 +69,6 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
                Eigen::Vector4d* out, int max_out) {
   std::vector<Eigen::Vector4d> planes;  // n, d with n.x <= d inside
   if (const auto* hull = std::get_if<ConvexHull>(&shape)) {
-    if (!hull->climbs() && hull->size() < 4) return 0;
     const mesh::TriangleMesh m = mesh::tessellate(shape);
     if (m.triangles.empty()) return 0;  // flat or degenerate: no interior
     const Eigen::Vector3d centroid = hull->center();
@@ -149,8 +148,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
                                 std::to_string(m.numActiveJoints()) + " active joints");
   if (group_active_.empty())
     for (std::size_t i = 0; i < m.numActiveJoints(); ++i) group_active_.push_back(int(i));
-  std::vector<char> in_group(m.numActiveJoints(), 0);
-  for (int a : group_active_) in_group.at(a) = 1;
+  in_group_.assign(m.numActiveJoints(), 0);
+  for (int a : group_active_) in_group_.at(a) = 1;
 
   // Which links move with the group (parents come before children in model order).
   moves_.assign(m.links.size(), 0);
@@ -159,8 +158,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     if (link.parent_joint < 0) continue;
     const RobotJoint& j = m.joints[link.parent_joint];
     bool own = false;
-    if (j.active_index >= 0) own = in_group[j.active_index];
-    else if (j.mimic_active >= 0) own = in_group[j.mimic_active];
+    if (j.active_index >= 0) own = in_group_[j.active_index];
+    else if (j.mimic_active >= 0) own = in_group_[j.mimic_active];
     moves_[l] = moves_[link.parent_link] || own;
   }
 
@@ -266,15 +265,9 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       localBox(ob.shape, &c_S, &b.h);
       b.R = ob.X_WO.linear();
       b.c = ob.X_WO * c_S;
-      obbs_.push_back(b);
-      Obb inner = b;
-      if (const auto* box = std::get_if<Box>(&ob.shape)) {
-        inner.c = ob.X_WO.translation();
-        inner.h = box->half;
-      } else {
-        inner.h = Eigen::Vector3d::Constant(-1.0);
-      }
-      inner_boxes_.push_back(inner);
+      obbs_.push_back(b);  // a box's: centre X_WO's translation, half extents grown by 1e-9
+      const auto* box = std::get_if<Box>(&ob.shape);
+      inner_half_.push_back(box ? box->half : Eigen::Vector3d::Constant(-1.0));
     }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {
@@ -322,8 +315,6 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
   const double pi = 3.141592653589793;
   std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
   std::vector<double> q = held_;
-  std::vector<char> in_group(m.numActiveJoints(), 0);
-  for (int a : group_active_) in_group.at(a) = 1;
   // Joints from a link up to (not including) the link `stop`.
   auto chainUp = [&](int link, int stop) {
     std::vector<int> out;
@@ -393,7 +384,7 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
         ok = false;
         break;
       }
-      if (!in_group[v]) {
+      if (!in_group_[v]) {
         int f = 0;
         while (f < t.num_fixed && t.fixed_var[f] != v) ++f;
         if (f == t.num_fixed) {

@@ -187,9 +187,6 @@ class CollisionModel {
     Eigen::Vector3d h = Eigen::Vector3d::Zero();
   };
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
-  /// The box of obstacle o when its shape is a box (exact half extents), else h = -1: the
-  /// inner-ball stage tests balls against it.
-  const std::vector<Obb>& obstacleInnerBoxes() const { return inner_boxes_; }
   const SelfCollisionPairs& selfPairReport() const { return self_report_; }
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 
@@ -231,6 +228,14 @@ class CollisionModel {
 
  private:
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
+  /// The pose of element e's shape given its link's pose: the link pose itself when the shape
+  /// frame is the identity, else the product, written into `scratch`.
+  static const Eigen::Isometry3d& shapePose(const Eigen::Isometry3d& X_WL, const Element& e,
+                                            Eigen::Isometry3d& scratch) {
+    if (e.identity_LS) return X_WL;
+    scratch = X_WL * e.source->X_LS;
+    return scratch;
+  }
   void buildSelfTables(const CollisionModelOptions& options);
   double prismaticTravel(const RobotJoint& j) const;
 
@@ -240,6 +245,7 @@ class CollisionModel {
   std::vector<int> group_active_;
   std::vector<double> held_;
   std::vector<char> moves_;
+  std::vector<char> in_group_;  ///< per active joint: in the group
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
@@ -247,7 +253,9 @@ class CollisionModel {
   std::vector<int> table_pairs_;  ///< self pairs with a table (indices into self_pairs_)
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
-  std::vector<Obb> inner_boxes_;
+  /// Exact half extents of obstacle o when it is a box (centred and turned as obbs_[o]), else
+  /// -1: the inner-ball stage tests balls against it.
+  std::vector<Eigen::Vector3d> inner_half_;
   SelfCollisionPairs self_report_;
   std::size_t obstacles_before_ = 0;
   double pruned_gap_ = std::numeric_limits<double>::infinity();
@@ -341,8 +349,6 @@ template <class SceneNarrow, class SelfNarrow>
 bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
                                   bool obb_stage, bool inner_stage) const {
-  // World centres of the slot spheres, once per state (per-thread scratch, no allocation
-  // after the first call with a model this size).
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
   // The cells are kept for the self-pair sweep below.
   thread_local std::vector<SelfPairTable::Cell> cells;
@@ -355,8 +361,9 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
       if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
     }
   }
-  // (The thread-local vector and the slot count are read once: inside the loops the compiler
-  // would reload both after every store.)
+  // World centres of the slot spheres, once per state (per-thread scratch, no allocation
+  // after the first call with a model this size). The thread-local vector and the slot count
+  // are read once: inside the loops the compiler would reload both after every store.
   thread_local std::vector<Eigen::Vector3d> center_store;
   const std::size_t num_slots = slots_.size();
   if (center_store.size() < num_slots) center_store.resize(num_slots);
@@ -387,19 +394,18 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
             if (detail::sqDistPointAabb(X * el.center_L, boxes_[o]) > re * re) continue;
           }
           Eigen::Isometry3d X_prod;
-          if (!el.identity_LS) X_prod = X * el.source->X_LS;
-          const Eigen::Isometry3d& X_WS = el.identity_LS ? X : X_prod;
+          const Eigen::Isometry3d& X_WS = shapePose(X, el, X_prod);
           if (obb_stage) {
             const Obb& ob = obbs_[o];
             if (detail::obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
                                  scene_padding))
               continue;
           }
-          if (inner_stage && el.num_inner > 0) {
-            const Obb& ib = inner_boxes_[o];
+          if (inner_stage && el.num_inner > 0 && inner_half_[o].x() >= 0.0) {
+            const Obb& ob = obbs_[o];
             for (int k = 0; k < el.num_inner; ++k)
-              if (detail::ballTouchesBox(X_WS * el.inner_S[k].head<3>(), el.inner_S[k].w(), ib.R, ib.c, ib.h,
-                                         scene_padding))
+              if (detail::ballTouchesBox(X_WS * el.inner_S[k].head<3>(), el.inner_S[k].w(), ob.R, ob.c,
+                                         inner_half_[o], scene_padding))
                 return true;
           }
           if (scene(e, X_WS, o)) return true;
@@ -424,8 +430,7 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
       const Element& a = elements_[ea];
       Eigen::Isometry3d X_prod_a;
-      if (!a.identity_LS) X_prod_a = XA * a.source->X_LS;
-      const Eigen::Isometry3d& X_WA = a.identity_LS ? XA : X_prod_a;
+      const Eigen::Isometry3d& X_WA = shapePose(XA, a, X_prod_a);
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
         const Element& b = elements_[eb];
         if (!single) {
@@ -433,8 +438,7 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
           if ((XA * a.center_L - XB * b.center_L).squaredNorm() > rr * rr) continue;
         }
         Eigen::Isometry3d X_prod_b;
-        if (!b.identity_LS) X_prod_b = XB * b.source->X_LS;
-        const Eigen::Isometry3d& X_WB = b.identity_LS ? XB : X_prod_b;
+        const Eigen::Isometry3d& X_WB = shapePose(XB, b, X_prod_b);
         if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                                           X_WB * b.box_center_S, b.box_half, self_padding))
           continue;
