@@ -9,13 +9,24 @@
 namespace dss {
 namespace {
 
+using Pair = double __attribute__((vector_size(16)));
+using PairBits = std::int64_t __attribute__((vector_size(16)));
+
+inline Pair splat(double v) { return Pair{v, v}; }
+inline Pair loadPair(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void storePair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+
 // sin and cos together, within about 2 ulp of libm for |x| < 1e5 (joint angles): Cody-Waite
 // reduction by pi/2 with a 33-bit leading part (k * kPio2Hi is exact for |k| < 2^20), then
 // Taylor polynomials on [-pi/4, pi/4] (truncation below 5e-17); the quadrant k mod 4 picks and
-// negates them. Written without branches over arrays, so that the joints of a state are
+// negates them. Without branches, two joints per SIMD pair, so that the joints of a state are
 // evaluated together: one joint's two polynomial chains are long and serial, and evaluated
 // inside the kinematics loop they took about half of its time. Calling libm's sincos costs
-// about as much as the rest of a kinematics step.
+// about as much as the rest of a kinematics step. Reads and writes n rounded up to even.
 inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n) {
   constexpr double kPio2Hi = 0x1.921fb544p+0;  // M_PI_2 truncated to 33 significant bits
   constexpr double kPio2Mid = 0x1.0b46p-34;     // M_PI_2 - kPio2Hi, exact
@@ -25,29 +36,27 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
   // std::nearbyint is an out-of-line call without SSE4.1. The low bits of kRound + t are
   // those of the integer t (two's complement), so they give the quadrant too.
   constexpr double kRound = 0x1.8p52;
-  constexpr std::uint64_t kSign = std::uint64_t(1) << 63;
-  for (int i = 0; i < n; ++i) {
-    const double shifted = x[i] * (2.0 / M_PI) + kRound;
-    const double k = shifted - kRound;
-    std::uint64_t bits;
-    std::memcpy(&bits, &shifted, sizeof bits);
-    const double r = ((x[i] - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
-    const double r2 = r * r;
+  const PairBits kSign = PairBits{1, 1} << 63;
+  for (int i = 0; i < n; i += 2) {
+    const Pair xi = loadPair(x + i);
+    const Pair shifted = xi * (2.0 / M_PI) + kRound;
+    const Pair k = shifted - kRound;
+    const PairBits bits = (PairBits)shifted;
+    const Pair r = ((xi - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
+    const Pair r2 = r * r;
     // 1/n! for the Taylor series
-    const double s = r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
-                     r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0)))))));
-    const double c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
-                     r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+    const Pair s = r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+                   r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0)))))));
+    const Pair c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
+                   r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
     // Quadrant q = k mod 4: sin = (s, c, -s, -c)[q], cos = (c, -s, -c, s)[q].
-    const std::uint64_t odd = bits & 1, half = (bits >> 1) & 1;
-    const std::uint64_t swap = std::uint64_t(0) - odd;  // all ones for odd q
-    std::uint64_t sb, cb;
-    std::memcpy(&sb, &s, sizeof sb);
-    std::memcpy(&cb, &c, sizeof cb);
-    const std::uint64_t so = ((cb & swap) | (sb & ~swap)) ^ (kSign & (std::uint64_t(0) - half));
-    const std::uint64_t co = ((sb & swap) | (cb & ~swap)) ^ (kSign & (std::uint64_t(0) - (half ^ odd)));
-    std::memcpy(&s_out[i], &so, sizeof so);
-    std::memcpy(&c_out[i], &co, sizeof co);
+    const PairBits odd = bits & 1, half = (bits >> 1) & 1;
+    const PairBits swap = 0 - odd;  // all ones for odd q
+    const PairBits sb = (PairBits)s, cb = (PairBits)c;
+    const PairBits so = ((cb & swap) | (sb & ~swap)) ^ (kSign & (0 - half));
+    const PairBits co = ((sb & swap) | (cb & ~swap)) ^ (kSign & (0 - (half ^ odd)));
+    std::memcpy(s_out + i, &so, sizeof so);
+    std::memcpy(c_out + i, &co, sizeof co);
   }
 }
 
@@ -56,40 +65,47 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
 // URDF origins rotate by multiples of pi/2 more often than not, written as
 // rpy="-1.5707963267948966 0 0" or, as in the Panda's URDF, "1.57079632679" (cos = 4.9e-12),
 // and then R_c holds tiny entries where the file means 0. Entries within 1e-11 of 0 or +-1
-// that form a signed permutation are taken as exactly that permutation: R * R_c is then a
-// selection of columns. A frame moves by at most 1e-11 times its distance from the joint (10
-// pm per metre), a thousand times below the float32 precision of STL mesh vertices (1e-7
-// relative). Anything else stays general. (On the Panda this makes 6 of its 10 constant
-// frames permutations instead of none.)
-void Kinematics::classifyConstantFrame(Step* s) {
-  s->frame = Step::Frame::kGeneral;
-  s->p_nonzero = 0;
-  for (int k = 0; k < 3; ++k)
-    if (s->p_c[k] != 0.0) s->p_nonzero |= static_cast<unsigned char>(1u << k);
+// that form a signed permutation are taken as exactly that permutation, so that the product
+// with R_c selects columns without rounding. A frame moves by at most 1e-11 times its
+// distance from the joint (10 pm per metre), a thousand times below the float32 precision of
+// STL mesh vertices (1e-7 relative). Anything else stays as it is.
+void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
+  s->R_c = X.linear();
+  s->p_c = X.translation();
   constexpr double kTol = 1e-11;
   bool used[3] = {false, false, false};
-  for (int j = 0; j < 3; ++j) {
-    int one = -1;
+  int perm[3];
+  bool permutation = true;
+  for (int j = 0; j < 3 && permutation; ++j) {
+    perm[j] = -1;
     for (int i = 0; i < 3; ++i) {
       const double a = s->R_c(i, j);
       if (std::abs(a) <= kTol) continue;
-      if (std::abs(std::abs(a) - 1.0) > kTol || one >= 0) return;
-      one = i;
+      if (std::abs(std::abs(a) - 1.0) > kTol || perm[j] >= 0) permutation = false;
+      perm[j] = i;
     }
-    if (one < 0 || used[one]) return;
-    used[one] = true;
-    s->perm[j] = one;
-    s->sign[j] = s->R_c(one, j) > 0 ? 1.0 : -1.0;
+    if (perm[j] < 0 || used[perm[j]]) permutation = false;
+    if (permutation) used[perm[j]] = true;
   }
-  bool identity = true;
-  for (int j = 0; j < 3; ++j) {
-    identity = identity && s->perm[j] == j && s->sign[j] == 1.0;
-    for (int i = 0; i < 3; ++i) s->R_c(i, j) = i == s->perm[j] ? s->sign[j] : 0.0;
+  if (permutation)
+    for (int j = 0; j < 3; ++j) {
+      const double sign = s->R_c(perm[j], j) > 0 ? 1.0 : -1.0;
+      for (int i = 0; i < 3; ++i) s->R_c(i, j) = i == perm[j] ? sign : 0.0;
+    }
+  s->identity_R = s->R_c == Eigen::Matrix3d::Identity();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) s->m[j][i] = splat(s->R_c(i, j));
+    s->m[3][i] = splat(s->p_c[i]);
   }
-  s->frame = identity ? Step::Frame::kIdentity : Step::Frame::kSignedPermutation;
 }
 
-void sinCosForKinematics(double x, double* s, double* c) { fastSinCosArray(&x, s, c, 1); }
+void sinCosForKinematics(double x, double* s, double* c) {
+  const double in[2] = {x, 0.0};
+  double so[2], co[2];
+  fastSinCosArray(in, so, co, 1);
+  *s = so[0];
+  *c = co[0];
+}
 
 Kinematics::Kinematics(const RobotModel& model, bool all_links)
     : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
@@ -126,9 +142,7 @@ Kinematics::Kinematics(const RobotModel& model, bool all_links)
     Step s;
     s.link = static_cast<int>(l);
     s.ref = ref == root_ ? -1 : ref;
-    s.R_c = X.linear();
-    s.p_c = X.translation();
-    classifyConstantFrame(&s);
+    setConstantFrame(&s, X);
     s.axis = joint.axis;
     s.multiplier = 1.0;
     s.offset = 0.0;
@@ -176,8 +190,11 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
   const int num_trig = static_cast<int>(trig_steps_.size());
   X_WL[root_] = X_WR_;
   int block_begin = 0, block_end = 0;
-  int prev_link = -2;  // the link of the previous step, whose pose is in c0, c1, c2, p
-  Eigen::Vector3d c0, c1, c2, p;
+  // A pose as 8 pairs: column j of the column-major 4x4 matrix is (x, y) in c[2j] and (z, w) in
+  // c[2j + 1]. The pose of the previous step stays in c when it is the next step's reference
+  // (a chain), so that it comes from registers rather than from the stores just made.
+  Pair c[8] = {};
+  int prev_link = -2;
   // The step array and its size are read once: the stores into X_WL below would otherwise make
   // the compiler reload them every step.
   const Step* const steps = steps_.data();
@@ -192,69 +209,64 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
         const Step& st = steps[trig_steps[block_begin + t]];
         v[t] = st.multiplier * q[st.q_index] + st.offset;
       }
+      if (n & 1) v[n] = 0.0;
       fastSinCosArray(v, sn, cs, n);
       block_end = block_begin + n;
     }
-    // The reference frame's columns: from the previous step when it is the reference (a
-    // chain), so that they come from registers rather than from the stores just made.
-    Eigen::Vector3d a0, a1, a2, at;
+    Pair a[8];
     if (s.ref == prev_link) {
-      a0 = c0; a1 = c1; a2 = c2; at = p;
+      std::copy(c, c + 8, a);
     } else {
-      const Eigen::Matrix4d& A = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix();
-      a0 = A.col(0).head<3>(); a1 = A.col(1).head<3>(); a2 = A.col(2).head<3>(); at = A.col(3).head<3>();
+      const double* A = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data();
+      for (int k = 0; k < 8; ++k) a[k] = loadPair(A + 2 * k);
     }
-    const Eigen::Vector3d* a[3] = {&a0, &a1, &a2};
-    switch (s.frame) {
-      case Step::Frame::kIdentity: c0 = a0; c1 = a1; c2 = a2; break;
-      case Step::Frame::kSignedPermutation:
-        c0 = s.sign[0] * *a[s.perm[0]];
-        c1 = s.sign[1] * *a[s.perm[1]];
-        c2 = s.sign[2] * *a[s.perm[2]];
-        break;
-      default:
-        c0 = a0 * s.R_c(0, 0) + a1 * s.R_c(1, 0) + a2 * s.R_c(2, 0);
-        c1 = a0 * s.R_c(0, 1) + a1 * s.R_c(1, 1) + a2 * s.R_c(2, 1);
-        c2 = a0 * s.R_c(0, 2) + a1 * s.R_c(1, 2) + a2 * s.R_c(2, 2);
-        break;
+    // [c | p] = [a | at] [R_c | p_c], both halves of every column; the sums in the order
+    // a0 * m0 + a1 * m1 + a2 * m2 (+ at first for p), with products of exact zeros and ones
+    // for the snapped permutations.
+    for (int h = 0; h < 2; ++h) {
+      if (s.identity_R) {
+        c[h] = a[h], c[2 + h] = a[2 + h], c[4 + h] = a[4 + h];
+      } else {
+        for (int j = 0; j < 3; ++j) c[2 * j + h] = a[h] * s.m[j][0] + a[2 + h] * s.m[j][1] + a[4 + h] * s.m[j][2];
+      }
+      c[6 + h] = ((a[6 + h] + a[h] * s.m[3][0]) + a[2 + h] * s.m[3][1]) + a[4 + h] * s.m[3][2];
     }
-    // p = A.linear() * p_c + A.translation(), skipping the zero terms of p_c
-    p = at;
-    if (s.p_nonzero & 1u) p += s.p_c[0] * a0;
-    if (s.p_nonzero & 2u) p += s.p_c[1] * a1;
-    if (s.p_nonzero & 4u) p += s.p_c[2] * a2;
-    auto rotate = [](Eigen::Vector3d& ca, Eigen::Vector3d& cb, double sv, double c) {
-      // rotation about the third axis mixes these two columns
-      const Eigen::Vector3d x = ca, y = cb;
-      ca = c * x + sv * y;
-      cb = c * y - sv * x;
+    // Rotation about axis k mixes columns k + 1 and k + 2: x' = cos x + sin y, y' = cos y - sin x.
+    auto rotate = [&c](int ca, int cb, double sv, double cv) {
+      for (int h = 0; h < 2; ++h) {
+        const Pair x = c[2 * ca + h], y = c[2 * cb + h];
+        c[2 * ca + h] = cv * x + sv * y;
+        c[2 * cb + h] = cv * y - sv * x;
+      }
     };
+    // Translation along column k: p += d c_k.
+    auto translate = [&c](int k, double d) { c[6] += d * c[2 * k], c[7] += d * c[2 * k + 1]; };
     switch (s.motion) {
       case Motion::kNone: break;
-      case Motion::kRotX: rotate(c1, c2, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
-      case Motion::kRotY: rotate(c2, c0, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
-      case Motion::kRotZ: rotate(c0, c1, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
+      case Motion::kRotX: rotate(1, 2, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
+      case Motion::kRotY: rotate(2, 0, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
+      case Motion::kRotZ: rotate(0, 1, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
       case Motion::kRotAxis: {
         const Eigen::Matrix3d M = Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix();
-        const Eigen::Vector3d x = c0, y = c1, z = c2;
-        c0 = x * M(0, 0) + y * M(1, 0) + z * M(2, 0);
-        c1 = x * M(0, 1) + y * M(1, 1) + z * M(2, 1);
-        c2 = x * M(0, 2) + y * M(1, 2) + z * M(2, 2);
+        Pair x[6];
+        std::copy(c, c + 6, x);
+        for (int h = 0; h < 2; ++h)
+          for (int j = 0; j < 3; ++j) c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
         break;
       }
-      case Motion::kTransX: p += (s.multiplier * q[s.q_index] + s.offset) * c0; break;
-      case Motion::kTransY: p += (s.multiplier * q[s.q_index] + s.offset) * c1; break;
-      case Motion::kTransZ: p += (s.multiplier * q[s.q_index] + s.offset) * c2; break;
-      case Motion::kTransAxis:
-        p += (s.multiplier * q[s.q_index] + s.offset) * (c0 * s.axis.x() + c1 * s.axis.y() + c2 * s.axis.z());
+      case Motion::kTransX: translate(0, s.multiplier * q[s.q_index] + s.offset); break;
+      case Motion::kTransY: translate(1, s.multiplier * q[s.q_index] + s.offset); break;
+      case Motion::kTransZ: translate(2, s.multiplier * q[s.q_index] + s.offset); break;
+      case Motion::kTransAxis: {
+        const double d = s.multiplier * q[s.q_index] + s.offset;
+        for (int h = 0; h < 2; ++h) c[6 + h] += d * (c[h] * s.axis.x() + c[2 + h] * s.axis.y() + c[4 + h] * s.axis.z());
         break;
+      }
     }
-    // Column-major 4x4, written entry by entry (the comma initializer tests alignment).
+    // The bottom row is written exactly (0 0 0 1), whatever the products gave it.
     double* X = X_WL[s.link].matrix().data();
-    X[0] = c0.x(), X[1] = c0.y(), X[2] = c0.z(), X[3] = 0.0;
-    X[4] = c1.x(), X[5] = c1.y(), X[6] = c1.z(), X[7] = 0.0;
-    X[8] = c2.x(), X[9] = c2.y(), X[10] = c2.z(), X[11] = 0.0;
-    X[12] = p.x(), X[13] = p.y(), X[14] = p.z(), X[15] = 1.0;
+    for (int k = 0; k < 8; ++k) storePair(X + 2 * k, c[k]);
+    X[3] = 0.0, X[7] = 0.0, X[11] = 0.0, X[15] = 1.0;
     prev_link = s.link;
   }
 }

@@ -6,7 +6,8 @@
 // advance) times the joint motion. By default only the links that carry geometry and the
 // moving links that lead to them are computed; links outside that set are left untouched in
 // the output array (pass all_links = true to compute every link). Joint axes along +-x, +-y,
-// +-z (nearly all real robots) take a short path with one sin/cos pair and 12 products.
+// +-z (nearly all real robots) take a short path with one sin/cos pair (computed two joints at
+// a time) and 12 products; poses are computed as pairs of doubles (SIMD registers).
 // Mimic joints read their leader's value: q = multiplier * q_leader + offset.
 // Thread safety: const queries on one Kinematics may run concurrently. A Kinematics keeps
 // no reference to its RobotModel.
@@ -45,24 +46,26 @@ class Kinematics {
 
  private:
   enum class Motion : unsigned char { kNone, kRotX, kRotY, kRotZ, kRotAxis, kTransX, kTransY, kTransZ, kTransAxis };
+  /// Two doubles in one SIMD register (SSE2, NEON): a 4x4 column-major pose is 8 of them.
+  using Pair = double __attribute__((vector_size(16)));
   struct Step {
+    /// The constant transform from ref to the joint frame, as the 4x4 product needs it: m[j][i]
+    /// holds entry (i, j) of [R_c | p_c] twice (column j = 3 is the translation).
+    Pair m[4][3];
+    Eigen::Matrix3d R_c;  // the same transform, for the general-axis paths and the tests
+    Eigen::Vector3d p_c;
+    Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int link;
     int ref;  // computed link whose pose this one starts from; -1: the base pose
-    Eigen::Matrix3d R_c;  // constant transform from ref to the joint frame
-    Eigen::Vector3d p_c;
-    enum class Frame : unsigned char { kIdentity, kSignedPermutation, kGeneral } frame;
-    int perm[3];           // kSignedPermutation: column j of R_c is sign[j] * e_perm[j]
-    double sign[3];
-    unsigned char p_nonzero;  // bit k: p_c[k] != 0
-    Motion motion;
-    Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int q_index;           // active joint index read
+    int trig;              // kRotX/Y/Z: index into trig_steps_; else -1
     double multiplier;     // sign of an axis-aligned axis, times the mimic multiplier
     double offset;         // mimic offset times the same sign
-    int trig;              // kRotX/Y/Z: index into trig_steps_; else -1
+    bool identity_R;       // R_c is exactly the identity: only the translation applies
+    Motion motion;
   };
 
-  static void classifyConstantFrame(Step* s);
+  static void setConstantFrame(Step* s, const Eigen::Isometry3d& X);
 
   std::vector<Step> steps_;
   std::vector<int> trig_steps_;  // steps with an axis-aligned rotation, in order
