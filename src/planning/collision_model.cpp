@@ -285,6 +285,17 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
       }
     scene_pairs_ += n;
   }
+  // The clearance grid covers the reach balls of the links checked against the scene.
+  Aabb region;
+  region.lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  region.upper = -region.lower;
+  for (const Slot& slot : slots_)
+    if (!slot.obstacles.empty() && std::isfinite(slot.reach_radius) && slot.reach_center_W.allFinite()) {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(slot.reach_radius);
+      region.lower = region.lower.cwiseMin(slot.reach_center_W - r);
+      region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
+    }
+  grid_ = ClearanceGrid(region, boxes_);
   buildSelfTables(options);
 }
 

@@ -137,6 +137,9 @@ nlohmann::json describe(const dss::Problem& p) {
   for (const auto& sp : m.selfPairs())
     pairs.push_back({r.links[m.slots()[sp.a].link].name, r.links[m.slots()[sp.b].link].name});
   j["self_pairs"] = pairs;
+  const dss::ClearanceGrid& grid = m.clearanceGrid();
+  j["clearance_grid"] = {{"voxels", grid.voxels()}, {"voxel_size", grid.voxelSize()},
+                         {"origin", {grid.origin().x(), grid.origin().y(), grid.origin().z()}}};
   j["robot_scene_pairs"] = m.scenePairs();
   j["robot_scene_pairs_total"] = m.scenePairsBefore();
   j["summary"] = m.summary();

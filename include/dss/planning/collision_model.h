@@ -14,7 +14,9 @@
 //    link's geometry); obstacles whose box no such ball reaches (plus the scene padding) are
 //    dropped.
 // Each link and each element carries a bounding sphere in its link frame; with the link poses
-// of a state they give a cheap world-space prefilter before the exact narrow phase. The
+// of a state they give a cheap world-space prefilter before the exact narrow phase (a link
+// sphere is first looked up in a clearance grid, see clearance_grid.h, then tested against
+// the obstacle boxes one by one). The
 // narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
 //
 // Self-pair tables: when the relative pose of two links depends on one or two group joint
@@ -49,6 +51,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "dss/planning/clearance_grid.h"
 #include "dss/robot/collision_pairs.h"
 #include "dss/robot/kinematics.h"
 #include "dss/robot/robot_model.h"
@@ -187,6 +190,9 @@ class CollisionModel {
     Eigen::Vector3d h = Eigen::Vector3d::Zero();
   };
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
+  /// Lower bounds on the distance to the obstacle boxes over the region the moving links
+  /// reach: the first test of the sweep for each link sphere.
+  const ClearanceGrid& clearanceGrid() const { return grid_; }
   const SelfCollisionPairs& selfPairReport() const { return self_report_; }
   bool linkMovesWithGroup(int link) const { return moves_[link]; }
 
@@ -253,6 +259,7 @@ class CollisionModel {
   std::vector<int> table_pairs_;  ///< self pairs with a table (indices into self_pairs_)
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
+  ClearanceGrid grid_;
   /// Exact half extents of obstacle o when it is a box (centred and turned as obbs_[o]), else
   /// -1: the inner-ball stage tests balls against it.
   std::vector<Eigen::Vector3d> inner_half_;
@@ -381,6 +388,7 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     const Eigen::Isometry3d& X = X_WL[s.link];
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
+    if (grid_.clear(c, r)) continue;
     for (std::size_t begin = 0; begin < nb; begin += 64) {
       const std::size_t n = std::min<std::size_t>(64, nb - begin);
       for (std::uint64_t hits = detail::sphereBoxHits(s.box_soa.data(), s.box_stride, begin, n, c, r * r); hits;
