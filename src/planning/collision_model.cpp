@@ -507,10 +507,32 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
       t.num_colliding += c == SelfPairTable::kColliding;
     }
     if (t.num_free == 0 && t.num_colliding == 0) continue;
-    table_pairs_.push_back(int(&pair - self_pairs_.data()));
     pair.table = int(self_tables_.size());
     self_tables_.push_back(std::move(t));
   }
+  // Tables on the same grid next to each other, at most four per group, packed.
+  std::vector<SelfPairTable> ordered;
+  std::vector<int> new_index(self_tables_.size(), -1);
+  for (std::size_t i = 0; i < self_tables_.size(); ++i) {
+    if (new_index[i] >= 0) continue;
+    TableGroup g;
+    g.first = int(ordered.size());
+    for (std::size_t j = i; j < self_tables_.size() && g.count < 4; ++j) {
+      if (new_index[j] >= 0 || (j != i && !self_tables_[j].sameGrid(ordered[g.first]))) continue;
+      new_index[j] = int(ordered.size());
+      ordered.push_back(std::move(self_tables_[j]));
+      ++g.count;
+    }
+    g.packed.assign(ordered[g.first].free.size(), 0);
+    for (int k = 0; k < g.count; ++k) {
+      const std::vector<unsigned char>& cells = ordered[g.first + k].free;
+      for (std::size_t c = 0; c < cells.size(); ++c) g.packed[c] |= static_cast<std::uint8_t>(cells[c] << (2 * k));
+    }
+    table_groups_.push_back(std::move(g));
+  }
+  self_tables_ = std::move(ordered);
+  for (SelfPair& pair : self_pairs_)
+    if (pair.table >= 0) pair.table = new_index[pair.table];
 }
 
 void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {

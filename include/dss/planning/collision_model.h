@@ -105,18 +105,36 @@ struct SelfPairTable {
   bool certifiedColliding(const double* q) const { return cell(q) == kColliding; }
   /// The decided state of the cell of q (kUnknown outside the range, or for NaN).
   Cell cell(const double* q) const {
+    if (!heldMatch(q)) return kUnknown;
+    const int idx = index(q);
+    return idx < 0 ? kUnknown : static_cast<Cell>(free[idx]);
+  }
+  /// The joints held outside the group are at the values the table was built with.
+  bool heldMatch(const double* q) const {
     for (int k = 0; k < num_fixed; ++k)
-      if (!(q[fixed_var[k]] == fixed_value[k])) return kUnknown;
+      if (!(q[fixed_var[k]] == fixed_value[k])) return false;
+    return true;
+  }
+  /// The cell index of q (row-major), or -1 outside the range or for NaN.
+  int index(const double* q) const {
     int idx = 0;
     for (int k = 0; k < num_vars; ++k) {
       double v = q[var[k]];
       if (wrap[k]) v -= 6.283185307179586 * std::floor((v + 3.141592653589793) / 6.283185307179586);
-      if (!(v >= lo[k] && v <= hi[k])) return kUnknown;
+      if (!(v >= lo[k] && v <= hi[k])) return -1;
       int i = static_cast<int>((v - lo[k]) * inv_width[k]);
       if (i >= cells[k]) i = cells[k] - 1;
       idx = idx * cells[k] + i;
     }
-    return static_cast<Cell>(free[idx]);
+    return idx;
+  }
+  /// Same variables, ranges and cells: the same index for every q.
+  bool sameGrid(const SelfPairTable& o) const {
+    if (num_vars != o.num_vars) return false;
+    for (int k = 0; k < num_vars; ++k)
+      if (var[k] != o.var[k] || lo[k] != o.lo[k] || hi[k] != o.hi[k] || wrap[k] != o.wrap[k] || cells[k] != o.cells[k])
+        return false;
+    return true;
   }
 };
 
@@ -256,7 +274,15 @@ class CollisionModel {
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
   std::vector<SelfPairTable> self_tables_;
-  std::vector<int> table_pairs_;  ///< self pairs with a table (indices into self_pairs_)
+  /// Tables on the same grid (e.g. the Panda's link5 against link7, the hand and the two
+  /// fingers: joints 6 and 7) packed together, two bits per table in one byte per cell, so
+  /// that a state reads one byte for all of them.
+  struct TableGroup {
+    int first = 0;  ///< its tables: self_tables_[first, first + count), on the grid of the first
+    int count = 0;  ///< at most 4
+    std::vector<std::uint8_t> packed;
+  };
+  std::vector<TableGroup> table_groups_;
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
   ClearanceGrid grid_;
@@ -361,11 +387,16 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   thread_local std::vector<SelfPairTable::Cell> cells;
   if (q) {
     if (cells.size() < self_tables_.size()) cells.resize(self_tables_.size());
-    for (int k : table_pairs_) {
-      const int ti = self_pairs_[k].table;
-      const SelfPairTable& t = self_tables_[ti];
-      cells[ti] = t.cell(q);
-      if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
+    for (const TableGroup& g : table_groups_) {
+      const int idx = self_tables_[g.first].index(q);
+      const unsigned byte = idx < 0 ? 0u : g.packed[idx];
+      for (int m = 0; m < g.count; ++m) {
+        const int ti = g.first + m;
+        const SelfPairTable& t = self_tables_[ti];
+        const auto c = static_cast<SelfPairTable::Cell>((byte >> (2 * m)) & 3u);
+        cells[ti] = c != SelfPairTable::kUnknown && t.heldMatch(q) ? c : SelfPairTable::kUnknown;
+        if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
+      }
     }
   }
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
