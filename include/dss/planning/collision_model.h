@@ -303,15 +303,18 @@ namespace detail {
 inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const Eigen::Vector3d& ha,
                      const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb, const Eigen::Vector3d& hb,
                      double pad) {
-  const Eigen::Matrix3d R = Ra.transpose() * Rb;
   const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
   const double margin = pad + 1e-9 * (ha.sum() + hb.sum() + t.cwiseAbs().sum()) + 1e-12;
-  Eigen::Matrix3d A = R.cwiseAbs();
-  A.array() += 1e-12;
+  // B's axes first, each as soon as its column of R = Ra^T Rb is known: in the sweep B is the
+  // obstacle (walls, shelves, tables), whose face normals separate most pairs that get here.
+  Eigen::Matrix3d R, A;
+  for (int j = 0; j < 3; ++j) {
+    R.col(j) = Ra.transpose() * Rb.col(j);
+    A.col(j) = R.col(j).cwiseAbs().array() + 1e-12;
+    if (std::abs(t.dot(R.col(j))) > ha.dot(A.col(j)) + hb[j] + margin) return true;
+  }
   for (int i = 0; i < 3; ++i)
     if (std::abs(t[i]) > ha[i] + hb.dot(A.row(i)) + margin) return true;
-  for (int j = 0; j < 3; ++j)
-    if (std::abs(t.dot(R.col(j))) > ha.dot(A.col(j)) + hb[j] + margin) return true;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
