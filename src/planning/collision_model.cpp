@@ -216,7 +216,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   for (const auto& [a, b] : self_report_.pairs) {
     if (!moves_[a] && !moves_[b]) continue;  // their relative pose never changes
     if (slot_of[a] < 0 || slot_of[b] < 0) continue;
-    self_pairs_.push_back({slot_of[a], slot_of[b]});
+    self_pairs_.push_back({slot_of[a], slot_of[b], -1, slots_[slot_of[a]].radius + slots_[slot_of[b]].radius});
   }
 
   // Robot-scene pairs and pruning.

@@ -179,6 +179,7 @@ class CollisionModel {
   struct SelfPair {
     int a = -1, b = -1;  ///< slots
     int table = -1;      ///< index into selfTables(), or -1
+    double radius_sum = 0.0;  ///< of the two slot spheres
   };
 
   /// `group_active`: active joint indices of the group (empty: every active joint).
@@ -386,21 +387,26 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
                                   bool obb_stage, bool inner_stage) const {
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
-  // The cells are kept for the self-pair sweep below.
-  thread_local std::vector<SelfPairTable::Cell> cells;
+  // The cells that let a pair be skipped ("free" at this padding) are kept for the self-pair
+  // sweep below.
+  thread_local std::vector<unsigned char> skip_store;
+  if (skip_store.size() < self_tables_.size()) skip_store.resize(self_tables_.size());
+  unsigned char* const skip = skip_store.data();
   if (q) {
-    if (cells.size() < self_tables_.size()) cells.resize(self_tables_.size());
     for (const TableGroup& g : table_groups_) {
       const int idx = self_tables_[g.first].index(q);
       const unsigned byte = idx < 0 ? 0u : g.packed[idx];
       for (int m = 0; m < g.count; ++m) {
         const int ti = g.first + m;
         const SelfPairTable& t = self_tables_[ti];
-        const auto c = static_cast<SelfPairTable::Cell>((byte >> (2 * m)) & 3u);
-        cells[ti] = c != SelfPairTable::kUnknown && t.heldMatch(q) ? c : SelfPairTable::kUnknown;
-        if (cells[ti] == SelfPairTable::kColliding && self_padding >= t.padding) return true;
+        const unsigned c = (byte >> (2 * m)) & 3u;
+        const bool held = c == SelfPairTable::kUnknown || t.heldMatch(q);
+        if (c == SelfPairTable::kColliding && held && self_padding >= t.padding) return true;
+        skip[ti] = c == SelfPairTable::kFree && held && self_padding <= t.padding;
       }
     }
+  } else {
+    std::fill(skip, skip + self_tables_.size(), 0);
   }
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
   // after the first call with a model this size). The thread-local vector and the slot count
@@ -457,15 +463,11 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   }
   // Self pairs.
   for (const SelfPair& p : self_pairs_) {
-    if (q && p.table >= 0) {
-      const SelfPairTable& t = self_tables_[p.table];
-      const SelfPairTable::Cell c = cells[p.table];
-      if (c == SelfPairTable::kFree && self_padding <= t.padding) continue;
-    }
+    if (p.table >= 0 && skip[p.table]) continue;
+    const double r = p.radius_sum + self_padding;
+    if ((centers[p.a] - centers[p.b]).squaredNorm() > r * r) continue;
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
-    const double r = sa.radius + sb.radius + self_padding;
-    if ((centers[p.a] - centers[p.b]).squaredNorm() > r * r) continue;
     const Eigen::Isometry3d& XA = X_WL[sa.link];
     const Eigen::Isometry3d& XB = X_WL[sb.link];
     const bool single = sa.num_elements == 1 && sb.num_elements == 1;
