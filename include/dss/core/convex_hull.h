@@ -185,8 +185,11 @@ class ConvexHullT {
   }
 
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    // Read back from the coordinate arrays the scan has just brought into cache.
-    const int i = supportIndex(d);
+    // Climbing compares whole points: read the winner from there (one cache line, where the
+    // three coordinate arrays would be three). The scan reads back from the coordinate arrays
+    // it has just brought into cache.
+    if (climbs()) return points_[climb(d)] - shift;
+    const int i = scan(d);
     const T* x = soa_.data();
     return Vec3<T>(x[i], x[stride_ + i], x[2 * stride_ + i]) - shift;
   }
