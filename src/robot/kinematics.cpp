@@ -70,8 +70,8 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
 // distance from the joint (10 pm per metre), a thousand times below the float32 precision of
 // STL mesh vertices (1e-7 relative). Anything else stays as it is.
 void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
-  s->R_c = X.linear();
-  s->p_c = X.translation();
+  Eigen::Matrix3d R_c = X.linear();
+  const Eigen::Vector3d p_c = X.translation();
   constexpr double kTol = 1e-11;
   bool used[3] = {false, false, false};
   int perm[3];
@@ -79,7 +79,7 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
   for (int j = 0; j < 3 && permutation; ++j) {
     perm[j] = -1;
     for (int i = 0; i < 3; ++i) {
-      const double a = s->R_c(i, j);
+      const double a = R_c(i, j);
       if (std::abs(a) <= kTol) continue;
       if (std::abs(std::abs(a) - 1.0) > kTol || perm[j] >= 0) permutation = false;
       perm[j] = i;
@@ -89,13 +89,13 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
   }
   if (permutation)
     for (int j = 0; j < 3; ++j) {
-      const double sign = s->R_c(perm[j], j) > 0 ? 1.0 : -1.0;
-      for (int i = 0; i < 3; ++i) s->R_c(i, j) = i == perm[j] ? sign : 0.0;
+      const double sign = R_c(perm[j], j) > 0 ? 1.0 : -1.0;
+      for (int i = 0; i < 3; ++i) R_c(i, j) = i == perm[j] ? sign : 0.0;
     }
-  s->identity_R = s->R_c == Eigen::Matrix3d::Identity();
+  s->identity_R = R_c == Eigen::Matrix3d::Identity();
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) s->m[j][i] = splat(s->R_c(i, j));
-    s->m[3][i] = splat(s->p_c[i]);
+    for (int j = 0; j < 3; ++j) s->m[j][i] = splat(R_c(i, j));
+    s->m[3][i] = splat(p_c[i]);
   }
 }
 

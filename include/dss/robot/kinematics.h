@@ -52,8 +52,6 @@ class Kinematics {
     /// The constant transform from ref to the joint frame, as the 4x4 product needs it: m[j][i]
     /// holds entry (i, j) of [R_c | p_c] twice (column j = 3 is the translation).
     Pair m[4][3];
-    Eigen::Matrix3d R_c;  // the same transform, for the general-axis paths and the tests
-    Eigen::Vector3d p_c;
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int link;
     int ref;  // computed link whose pose this one starts from; -1: the base pose
