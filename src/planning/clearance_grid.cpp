@@ -39,23 +39,12 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
       for (int x = 0; x < n[0]; ++x, ++i) {
         const Eigen::Vector3d c = origin_ + size * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
         double d2 = std::numeric_limits<double>::infinity();
-        for (const Aabb& b : boxes) {
-          const Eigen::Vector3d d = (b.lower - c).cwiseMax(c - b.upper).cwiseMax(0.0);
-          d2 = std::min(d2, d.squaredNorm());
-        }
+        for (const Aabb& b : boxes) d2 = std::min(d2, detail::sqDistPointAabb(c, b));
         const double margin = 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal);
         const double lower = std::sqrt(d2) - half_diagonal - margin;
         if (!(lower > 0.0)) continue;  // also NaN
         bound_[i] = static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
       }
-}
-
-double ClearanceGrid::bound(const Eigen::Vector3d& c) const {
-  const double f[3] = {(c.x() - origin_.x()) * inv_size_, (c.y() - origin_.y()) * inv_size_,
-                       (c.z() - origin_.z()) * inv_size_};
-  for (int a = 0; a < 3; ++a)
-    if (!(f[a] >= 0.0 && f[a] < n_[a])) return 0.0;
-  return bound_[index(f[0], f[1], f[2])] * kQuantum;
 }
 
 }  // namespace dss

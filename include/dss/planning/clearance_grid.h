@@ -31,14 +31,14 @@ class ClearanceGrid {
 
   /// True when every box is farther than r from c (proven; false when unknown).
   bool clear(const Eigen::Vector3d& c, double r) const {
-    const double fx = (c.x() - origin_.x()) * inv_size_;
-    const double fy = (c.y() - origin_.y()) * inv_size_;
-    const double fz = (c.z() - origin_.z()) * inv_size_;
-    if (!(fx >= 0.0 && fx < n_[0] && fy >= 0.0 && fy < n_[1] && fz >= 0.0 && fz < n_[2])) return false;
-    return bound_[index(fx, fy, fz)] * kQuantum > r;
+    const std::uint8_t* v = voxel(c);
+    return v && *v * kQuantum > r;
   }
   /// The lower bound (metres) stored for the voxel of c, 0 outside the grid.
-  double bound(const Eigen::Vector3d& c) const;
+  double bound(const Eigen::Vector3d& c) const {
+    const std::uint8_t* v = voxel(c);
+    return v ? *v * kQuantum : 0.0;
+  }
 
   bool empty() const { return bound_.empty(); }
   std::size_t voxels() const { return bound_.size(); }
@@ -46,9 +46,14 @@ class ClearanceGrid {
   const Eigen::Vector3d& origin() const { return origin_; }
 
  private:
-  std::size_t index(double fx, double fy, double fz) const {
-    return static_cast<std::size_t>(fz) * stride_z_ + static_cast<std::size_t>(fy) * stride_y_ +
-           static_cast<std::size_t>(fx);
+  /// The voxel holding c, or null outside the grid (and for NaN).
+  const std::uint8_t* voxel(const Eigen::Vector3d& c) const {
+    const double fx = (c.x() - origin_.x()) * inv_size_;
+    const double fy = (c.y() - origin_.y()) * inv_size_;
+    const double fz = (c.z() - origin_.z()) * inv_size_;
+    if (!(fx >= 0.0 && fx < n_[0] && fy >= 0.0 && fy < n_[1] && fz >= 0.0 && fz < n_[2])) return nullptr;
+    return &bound_[static_cast<std::size_t>(fz) * stride_z_ + static_cast<std::size_t>(fy) * stride_y_ +
+                   static_cast<std::size_t>(fx)];
   }
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();

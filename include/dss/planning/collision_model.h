@@ -340,11 +340,6 @@ inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matr
   return d.squaredNorm() < reach * reach;
 }
 
-inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
-  const Eigen::Vector3d d = (b.lower - p).cwiseMax(p - b.upper).cwiseMax(0.0);
-  return d.squaredNorm();
-}
-
 /// Bit i (i < n <= 64) set when box begin + i of a Slot's box_soa (six arrays of `stride`
 /// values, n rounded up to even within them) is not farther than sqrt(r2) from c, or when the
 /// distance is NaN: a set bit means "test further", so NaN is never a skip.

@@ -46,6 +46,14 @@ struct Aabb {
   }
 };
 
+namespace detail {
+/// Squared distance from p to the box (0 inside).
+inline double sqDistPointAabb(const Eigen::Vector3d& p, const Aabb& b) {
+  const Eigen::Vector3d d = (b.lower - p).cwiseMax(p - b.upper).cwiseMax(0.0);
+  return d.squaredNorm();
+}
+}  // namespace detail
+
 /// The tight world-space box of an obstacle (from its support function along the six axis
 /// directions, so exact for every shape type).
 Aabb worldAabb(const Obstacle& obstacle);
