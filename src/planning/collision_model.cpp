@@ -139,7 +139,8 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
 CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
                                std::vector<int> group_active, std::vector<double> held,
                                const CollisionModelOptions& options)
-    : robot_(std::move(robot)), kin_(*robot_, /*all_links=*/false), scene_(std::move(scene)),
+    : robot_(std::move(robot)), kin_(*robot_, /*all_links=*/false), sweep_kin_(*robot_, /*all_links=*/false),
+      scene_(std::move(scene)),
       group_active_(std::move(group_active)), held_(std::move(held)) {
   const RobotModel& m = *robot_;
   if (held_.size() != m.numActiveJoints())
@@ -150,6 +151,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     for (std::size_t i = 0; i < m.numActiveJoints(); ++i) group_active_.push_back(int(i));
   in_group_.assign(m.numActiveJoints(), 0);
   for (int a : group_active_) in_group_.at(a) = 1;
+  for (std::size_t a = 0; a < m.numActiveJoints(); ++a)
+    if (!in_group_[a]) held_active_.push_back(int(a));
 
   // Which links move with the group (parents come before children in model order).
   moves_.assign(m.links.size(), 0);
@@ -201,6 +204,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     slots_.push_back(s);
   }
   computeReach(X_WL);
+  placeOnPoseLinks();
 
   // Self pairs: the robot library's selection plus the scene's allowed link pairs.
   std::vector<std::pair<std::string, std::string>> allowed;
@@ -297,6 +301,46 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     }
   grid_ = ClearanceGrid(region, boxes_);
   buildSelfTables(options);
+}
+
+void CollisionModel::placeOnPoseLinks() {
+  const RobotModel& m = *robot_;
+  // X_PL[l]: link l in the frame of its pose link pose_of[l], the joints in between at their
+  // held values (parents come before children in model order).
+  std::vector<int> pose_of(m.links.size(), -1);
+  std::vector<Eigen::Isometry3d> X_PL(m.links.size(), Eigen::Isometry3d::Identity());
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const RobotLink& link = m.links[l];
+    pose_of[l] = int(l);
+    if (link.parent_joint < 0) continue;
+    const RobotJoint& j = m.joints[link.parent_joint];
+    const int lead = j.active_index >= 0 ? j.active_index : j.mimic_active;
+    if (lead >= 0 && in_group_[lead]) continue;  // moves with the group: a pose link itself
+    const double v = kin_.jointValue(held_.data(), link.parent_joint);
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
+      motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+    else if (j.type == JointType::kPrismatic)
+      motion.translation() = v * j.axis;
+    if (!motion.matrix().allFinite()) continue;  // a held value that places nothing: keep the link
+    pose_of[l] = pose_of[link.parent_link];
+    X_PL[l] = X_PL[link.parent_link] * j.X_PJ * motion;
+  }
+  std::vector<char> wanted(m.links.size(), 0);
+  wanted[m.root_link] = 1;
+  for (Slot& s : slots_) {
+    s.pose_link = pose_of[s.link];
+    wanted[s.pose_link] = 1;
+    const Eigen::Isometry3d& X = X_PL[s.link];
+    s.center_P = X * s.center_L;
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+      Element& el = elements_[e];
+      el.X_PS = X * el.source->X_LS;
+      el.identity_PS = el.X_PS.matrix() == Eigen::Matrix4d::Identity();
+      el.center_P = X * el.center_L;
+    }
+  }
+  sweep_kin_ = Kinematics(m, wanted);
 }
 
 double CollisionModel::prismaticTravel(const RobotJoint& j) const {
@@ -440,6 +484,7 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
     }
     if (!ok) continue;
     t.padding = options.self_table_padding;
+    table_padding_ = t.padding;
     t.free.assign(std::size_t(t.cells[0]) * std::size_t(t.cells[1]), 0);
     Options exact;
     exact.mode = Mode::kExact;

@@ -99,6 +99,7 @@ nlohmann::json describe(const dss::Problem& p) {
     json l;
     l["name"] = r.links[s.link].name;
     l["moves"] = s.moves;
+    l["pose_link"] = r.links[s.pose_link].name;  // the link whose pose places it in a query
     l["bounding_radius"] = s.radius;
     if (s.moves) l["reach_radius"] = s.reach_radius;
     json els = json::array();

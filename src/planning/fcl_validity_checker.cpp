@@ -105,6 +105,7 @@ FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr& si
                                        FclPrefilter prefilter)
     : ModelValidityChecker(si, std::move(model), std::move(map), scene_padding, self_padding),
       geometry_(geometry), prefilter_(prefilter) {
+  sweep_poses_ = prefilter_ != FclPrefilter::kAabb;
   const bool mesh = geometry_ == FclGeometry::kMesh;
   for (const auto& e : model_->elements()) {
     const CollisionElement& ce = *e.source;

@@ -42,20 +42,29 @@ bool ModelValidityChecker::isValid(const ompl::base::State* state) const {
     slot().invalid_input.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
-  model_->kinematics().computeLinkPoses(s.q.data(), s.X_WL.data());
-  if (collides(s.q.data(), s.X_WL.data())) {
-    slot().collisions.fetch_add(1, std::memory_order_relaxed);
-    return false;
-  }
-  return true;
+  return checkJoints(s.q.data(), s.X_WL.data());
 }
 
 bool ModelValidityChecker::isValidJoints(const double* q) const {
   slot().checks.fetch_add(1, std::memory_order_relaxed);
   Scratch& s = scratch();
   s.reserve(model_->robot().numActiveJoints(), model_->robot().links.size());
-  model_->kinematics().computeLinkPoses(q, s.X_WL.data());
-  if (collides(q, s.X_WL.data())) {
+  return checkJoints(q, s.X_WL.data());
+}
+
+bool ModelValidityChecker::checkJoints(const double* q, Eigen::Isometry3d* X_WL) const {
+  if (sweep_poses_ && model_->heldMatch(q)) {
+    // A pair certified colliding by its table needs no pose; the sweep needs only the pose
+    // links (CollisionModel::sweepKinematics).
+    if (model_->tablesCollide(q, self_padding_)) {
+      slot().collisions.fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
+    model_->sweepKinematics().computeLinkPoses(q, X_WL);
+  } else {
+    model_->kinematics().computeLinkPoses(q, X_WL);
+  }
+  if (collides(q, X_WL)) {
     slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
@@ -97,6 +106,7 @@ DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si
                            settings.self_padding),
       settings_(settings) {
   obb_stage_ = settings.obb_stage;
+  sweep_poses_ = true;
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace dss {
 namespace {
@@ -107,23 +109,36 @@ void sinCosForKinematics(double x, double* s, double* c) {
   *c = co[0];
 }
 
+namespace {
+std::vector<char> linksWithGeometry(const RobotModel& model, bool all_links) {
+  std::vector<char> wanted(model.links.size(), all_links ? 1 : 0);
+  for (std::size_t l = 0; l < model.links.size(); ++l) wanted[l] |= model.links[l].hasGeometry() ? 1 : 0;
+  return wanted;
+}
+}  // namespace
+
 Kinematics::Kinematics(const RobotModel& model, bool all_links)
+    : Kinematics(model, linksWithGeometry(model, all_links)) {}
+
+Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
     : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
   const std::size_t n = model.links.size();
+  if (wanted.size() != n)
+    throw std::invalid_argument("Kinematics: " + std::to_string(wanted.size()) + " link flags for robot " +
+                                model.name + " with " + std::to_string(n) + " links");
   for (const auto& j : model.joints)
     joints_.push_back({j.active_index, j.mimic_active, j.mimic_multiplier, j.mimic_offset});
-  // needed[l]: l carries geometry or leads to a link that does.
-  std::vector<char> needed(n, all_links ? 1 : 0);
+  // needed[l]: l is wanted or leads to a link that is.
+  std::vector<char> needed(n, 0);
   for (std::size_t l = 0; l < n; ++l)
-    if (model.links[l].hasGeometry())
+    if (wanted[l])
       for (int k = static_cast<int>(l); k >= 0 && !needed[k]; k = model.links[k].parent_link) needed[k] = 1;
-  // computed[l]: the pose is written. A needed link is computed when it has geometry, is the
-  // root, or its parent joint moves (fixed links without geometry are folded away).
+  // computed[l]: the pose is written. A needed link is computed when it is wanted, is the
+  // root, or its parent joint moves (fixed links on the way are folded away).
   std::vector<char> computed(n, 0);
   for (std::size_t l = 0; l < n; ++l) {
     const RobotLink& link = model.links[l];
-    computed[l] = needed[l] && (all_links || link.hasGeometry() || link.parent_joint < 0 ||
-                                model.joints[link.parent_joint].isMoving());
+    computed[l] = needed[l] && (wanted[l] || link.parent_joint < 0 || model.joints[link.parent_joint].isMoving());
   }
   computed[root_] = 1;
   updated_.push_back(root_);

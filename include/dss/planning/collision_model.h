@@ -19,6 +19,14 @@
 // the obstacle boxes one by one). The
 // narrow phase itself is a callback (DSS, FCL), so that every checker sees the same pairs.
 //
+// Pose links: a slot's link is rigid to the nearest link above it whose parent joint moves
+// with the group (or to the root) as long as the joints in between -- fixed, or held outside
+// the group -- keep their held values; the slot's sphere and its elements' shape poses are
+// also stored in that pose link's frame (Slot::pose_link, center_P, Element::X_PS). With the
+// held joints at their values (heldMatch) the sweep places every slot from its pose link, so
+// that sweepKinematics() computes fewer poses (the Panda arm group: link1..link7, its hand
+// and fingers riding on link7); otherwise it uses each slot's own link.
+//
 // Self-pair tables: when the relative pose of two links depends on one or two group joint
 // values only (e.g. the Panda's link5 and link7: joints 6 and 7; link5 and a finger: joints 6
 // and 7 with the finger joint held outside the group -- the table then answers only for the
@@ -152,6 +160,11 @@ class CollisionModel {
     Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
     Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
     bool identity_LS = false;     ///< source->X_LS is exactly the identity (X_WS = X_WL)
+    /// The same shape pose and sphere centre in the frame of the slot's pose link (see Slot):
+    /// what the sweep uses when the held joints are at held().
+    Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
+    bool identity_PS = false;
+    Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
     /// Balls inside the element's shape (centre in the shape frame, radius; the radius already
     /// reduced by a margin far above rounding): one of them touching an obstacle's box proves
     /// the pair colliding without a narrow phase.
@@ -162,6 +175,12 @@ class CollisionModel {
   /// A link with geometry.
   struct Slot {
     int link = -1;
+    /// The nearest link at or above `link` whose parent joint moves with the group (or the
+    /// root): joints between them are fixed or held, so `link` is rigid to it as long as the
+    /// held joints keep their held() values. The sweep then needs only the poses of pose links
+    /// (sweepKinematics()): a gripper's hand and fingers ride on the last arm link.
+    int pose_link = -1;
+    Eigen::Vector3d center_P = Eigen::Vector3d::Zero();  ///< center_L in the pose link's frame
     bool moves = false;           ///< moves with the group
     int first_element = 0;        ///< elements [first_element, first_element + num_elements)
     int num_elements = 0;
@@ -194,6 +213,27 @@ class CollisionModel {
   const RobotModel& robot() const { return *robot_; }
   /// Computes the poses of the links with geometry (others are left untouched).
   const Kinematics& kinematics() const { return kin_; }
+  /// Computes only the slots' pose links (Slot::pose_link): enough for anyCollision when the
+  /// state's held joints are at held() (heldMatch()).
+  const Kinematics& sweepKinematics() const { return sweep_kin_; }
+  /// Every active joint outside the group is at its held() value (exactly; NaN never is).
+  bool heldMatch(const double* q) const {
+    for (int a : held_active_)
+      if (!(q[a] == held_[a])) return false;
+    return true;
+  }
+  /// Some self pair is certified colliding by its table (needs no link pose), so that
+  /// anyCollision(q, ...) returns true at this self padding. (Answers only when heldMatch(q).)
+  bool tablesCollide(const double* q, double self_padding) const {
+    if (!(self_padding >= table_padding_) || !heldMatch(q)) return false;
+    for (const TableGroup& g : table_groups_) {
+      const int idx = self_tables_[g.first].index(q);
+      if (idx < 0) continue;
+      const unsigned byte = g.packed[idx];
+      if (byte & 0xAAu & ~(byte << 1)) return true;
+    }
+    return false;
+  }
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
   const std::vector<int>& groupActive() const { return group_active_; }
   const std::vector<double>& held() const { return held_; }
@@ -229,7 +269,9 @@ class CollisionModel {
   /// narrow phase for the element pairs that survive; returns true at the first collision.
   ///   scene(element, X_WS, obstacle) -> bool collides
   ///   self(element_a, X_WA, element_b, X_WB) -> bool collides
-  /// X_WL: link poses from kinematics().computeLinkPoses for the state.
+  /// X_WL: link poses from kinematics().computeLinkPoses for the state; when q is given and
+  /// heldMatch(q), from sweepKinematics() is enough (the sweep then places each slot from its
+  /// pose link; otherwise from its own link).
   /// With `obb_stage`, element pairs whose oriented boxes a separating-axis test (with a
   /// relative safety margin against rounding) proves apart are skipped too.
   /// With `q` (the active joint values of the state, may be null) self pairs in a certified
@@ -253,6 +295,9 @@ class CollisionModel {
 
  private:
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
+  /// Sets Slot::pose_link, Slot::center_P and the elements' X_PS / center_P, and
+  /// sweepKinematics() to compute the pose links.
+  void placeOnPoseLinks();
   /// The pose of element e's shape given its link's pose: the link pose itself when the shape
   /// frame is the identity, else the product, written into `scratch`.
   static const Eigen::Isometry3d& shapePose(const Eigen::Isometry3d& X_WL, const Element& e,
@@ -262,10 +307,27 @@ class CollisionModel {
     return scratch;
   }
   void buildSelfTables(const CollisionModelOptions& options);
+  template <bool kFolded, class SceneNarrow, class SelfNarrow>
+  bool sweep(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
+             const unsigned char* skip, SceneNarrow& scene, SelfNarrow& self, bool obb_stage,
+             bool inner_stage) const;
+  /// The pose of element e's shape from its slot's pose link (kFolded) or its own link.
+  template <bool kFolded>
+  static const Eigen::Isometry3d& placedShape(const Eigen::Isometry3d& X, const Element& e,
+                                              Eigen::Isometry3d& scratch) {
+    if (kFolded) {
+      if (e.identity_PS) return X;
+      scratch = X * e.X_PS;
+      return scratch;
+    }
+    return shapePose(X, e, scratch);
+  }
   double prismaticTravel(const RobotJoint& j) const;
 
   std::shared_ptr<const RobotModel> robot_;
   Kinematics kin_;
+  Kinematics sweep_kin_;
+  std::vector<int> held_active_;  ///< active joints outside the group
   Scene scene_;
   std::vector<int> group_active_;
   std::vector<double> held_;
@@ -284,6 +346,7 @@ class CollisionModel {
     std::vector<std::uint8_t> packed;
   };
   std::vector<TableGroup> table_groups_;
+  double table_padding_ = 0.0;  ///< the padding every table certifies
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
   ClearanceGrid grid_;
@@ -383,11 +446,23 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
                                   bool obb_stage, bool inner_stage) const {
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
   // The cells that let a pair be skipped ("free" at this padding) are kept for the self-pair
-  // sweep below.
+  // sweep.
   thread_local std::vector<unsigned char> skip_store;
   if (skip_store.size() < self_tables_.size()) skip_store.resize(self_tables_.size());
   unsigned char* const skip = skip_store.data();
-  if (q) {
+  const bool held = q && heldMatch(q);
+  if (held) {
+    // Every table was built at held() with the same padding: with the held joints there, a
+    // table's cell applies as it is, and the two-bit cells of a group are read as masks.
+    const bool use_colliding = self_padding >= table_padding_, use_free = self_padding <= table_padding_;
+    for (const TableGroup& g : table_groups_) {
+      const int idx = self_tables_[g.first].index(q);
+      const unsigned byte = idx < 0 ? 0u : g.packed[idx];
+      if (use_colliding && (byte & 0xAAu & ~(byte << 1))) return true;  // a cell kColliding (2)
+      const unsigned free = use_free ? byte & 0x55u & ~(byte >> 1) : 0u;  // cells kFree (1)
+      for (int m = 0; m < g.count; ++m) skip[g.first + m] = (free >> (2 * m)) & 1u;
+    }
+  } else if (q) {
     for (const TableGroup& g : table_groups_) {
       const int idx = self_tables_[g.first].index(q);
       const unsigned byte = idx < 0 ? 0u : g.packed[idx];
@@ -403,6 +478,19 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   } else {
     std::fill(skip, skip + self_tables_.size(), 0);
   }
+  if (held)
+    return sweep<true>(X_WL, scene_padding, self_padding, skip, scene, self, obb_stage, inner_stage);
+  return sweep<false>(X_WL, scene_padding, self_padding, skip, scene, self, obb_stage, inner_stage);
+}
+
+template <bool kFolded, class SceneNarrow, class SelfNarrow>
+bool CollisionModel::sweep(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
+                           const unsigned char* skip, SceneNarrow& scene, SelfNarrow& self, bool obb_stage,
+                           bool inner_stage) const {
+  // Where a slot and an element sit: from the slot's pose link (kFolded) or its own link.
+  auto linkOf = [](const Slot& s) { return kFolded ? s.pose_link : s.link; };
+  auto slotCenter = [](const Slot& s) -> const Eigen::Vector3d& { return kFolded ? s.center_P : s.center_L; };
+  auto elementCenter = [](const Element& e) -> const Eigen::Vector3d& { return kFolded ? e.center_P : e.center_L; };
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation
   // after the first call with a model this size). The thread-local vector and the slot count
   // are read once: inside the loops the compiler would reload both after every store.
@@ -412,15 +500,15 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   Eigen::Vector3d* const centers = center_store.data();
   const Slot* const slots = slots_.data();
   for (std::size_t k = 0; k < num_slots; ++k) {
-    const Eigen::Isometry3d& X = X_WL[slots[k].link];
-    centers[k] = X.linear() * slots[k].center_L + X.translation();
+    const Eigen::Isometry3d& X = X_WL[linkOf(slots[k])];
+    centers[k] = X.linear() * slotCenter(slots[k]) + X.translation();
   }
   // Robot vs scene.
   for (std::size_t k = 0; k < num_slots; ++k) {
     const Slot& s = slots_[k];
     const std::size_t nb = s.obstacles.size();
     if (nb == 0) continue;
-    const Eigen::Isometry3d& X = X_WL[s.link];
+    const Eigen::Isometry3d& X = X_WL[linkOf(s)];
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid_.clear(c, r)) continue;
@@ -434,10 +522,10 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
           const Element& el = elements_[e];
           if (s.num_elements > 1) {
             const double re = el.radius + scene_padding;
-            if (detail::sqDistPointAabb(X * el.center_L, boxes_[o]) > re * re) continue;
+            if (detail::sqDistPointAabb(X * elementCenter(el), boxes_[o]) > re * re) continue;
           }
           Eigen::Isometry3d X_prod;
-          const Eigen::Isometry3d& X_WS = shapePose(X, el, X_prod);
+          const Eigen::Isometry3d& X_WS = placedShape<kFolded>(X, el, X_prod);
           if (obb_stage) {
             const Obb& ob = obbs_[o];
             if (detail::obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
@@ -463,21 +551,21 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     if ((centers[p.a] - centers[p.b]).squaredNorm() > r * r) continue;
     const Slot& sa = slots_[p.a];
     const Slot& sb = slots_[p.b];
-    const Eigen::Isometry3d& XA = X_WL[sa.link];
-    const Eigen::Isometry3d& XB = X_WL[sb.link];
+    const Eigen::Isometry3d& XA = X_WL[linkOf(sa)];
+    const Eigen::Isometry3d& XB = X_WL[linkOf(sb)];
     const bool single = sa.num_elements == 1 && sb.num_elements == 1;
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
       const Element& a = elements_[ea];
       Eigen::Isometry3d X_prod_a;
-      const Eigen::Isometry3d& X_WA = shapePose(XA, a, X_prod_a);
+      const Eigen::Isometry3d& X_WA = placedShape<kFolded>(XA, a, X_prod_a);
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
         const Element& b = elements_[eb];
         if (!single) {
           const double rr = a.radius + b.radius + self_padding;
-          if ((XA * a.center_L - XB * b.center_L).squaredNorm() > rr * rr) continue;
+          if ((XA * elementCenter(a) - XB * elementCenter(b)).squaredNorm() > rr * rr) continue;
         }
         Eigen::Isometry3d X_prod_b;
-        const Eigen::Isometry3d& X_WB = shapePose(XB, b, X_prod_b);
+        const Eigen::Isometry3d& X_WB = placedShape<kFolded>(XB, b, X_prod_b);
         if (obb_stage && detail::obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                                           X_WB * b.box_center_S, b.box_half, self_padding))
           continue;

@@ -55,12 +55,18 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
 
  protected:
   virtual bool collides(const double* q, const Eigen::Isometry3d* X_WL) const = 0;
+  /// Poses (into X_WL) and collides() for one full active-joint vector, counted.
+  bool checkJoints(const double* q, Eigen::Isometry3d* X_WL) const;
 
   std::shared_ptr<const CollisionModel> model_;
   std::shared_ptr<const GroupStateMap> map_;
   double scene_padding_ = 0.0;
   double self_padding_ = 0.0;
   bool obb_stage_ = true;
+  /// collides() goes through CollisionModel::anyCollision with q: the self-pair tables may
+  /// answer before any pose is computed, and when the held joints are at their held values
+  /// the pose links (CollisionModel::sweepKinematics) are all it reads.
+  bool sweep_poses_ = false;
   // Counters live in per-thread slots (one cache line each, a thread's slot chosen once), so
   // that threads checking in parallel never write to the same line; counters() sums them.
   struct alignas(64) CounterSlot {

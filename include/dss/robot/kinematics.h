@@ -24,6 +24,10 @@ namespace dss {
 class Kinematics {
  public:
   explicit Kinematics(const RobotModel& model, bool all_links = false);
+  /// Computes the poses of the links flagged in `wanted` (one flag per model link) and of the
+  /// moving links that lead to them; every other link is left untouched. Throws
+  /// std::invalid_argument when the flags do not match the model.
+  Kinematics(const RobotModel& model, const std::vector<char>& wanted);
 
   /// The pose of the root link in the world (identity by default).
   void setBasePose(const Eigen::Isometry3d& X_WR) { X_WR_ = X_WR; }
