@@ -304,6 +304,17 @@ int run(int argc, char** argv) {
       per_state_wall[k].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
     }
   }
+  // Per repetition, each checker's time over the first checker's, taken in the same
+  // repetition a few milliseconds apart: the median of these paired ratios follows the speed
+  // ratio even when the machine changes speed between repetitions.
+  std::vector<double> paired_ratio(nc, 0.0);
+  for (std::size_t k = 1; k < nc; ++k) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < per_state[k].size() && i < per_state[0].size(); ++i)
+      if (per_state[0][i] > 0.0) r.push_back(per_state[k][i] / per_state[0][i]);
+    std::sort(r.begin(), r.end());
+    if (!r.empty()) paired_ratio[k] = r.size() % 2 ? r[r.size() / 2] : 0.5 * (r[r.size() / 2 - 1] + r[r.size() / 2]);
+  }
   for (std::size_t k = 0; k < nc; ++k) {
     const auto& checker = built[k];
     std::sort(per_state[k].begin(), per_state[k].end());
@@ -333,6 +344,7 @@ int run(int argc, char** argv) {
       std::size_t dis = 0;
       for (std::size_t i = 0; i < valid[k].size(); ++i) dis += valid[k][i] != valid[0][i];
       j["disagreements"] = dis;
+      j["paired_ratio_to_first"] = paired_ratio[k];
     }
     std::cerr << j.dump() << "\n";
   }
