@@ -230,7 +230,7 @@ class CollisionModel {
       const int idx = self_tables_[g.first].index(q);
       if (idx < 0) continue;
       const unsigned byte = g.packed[idx];
-      if (byte & 0xAAu & ~(byte << 1)) return true;
+      if (TableGroup::colliding(byte)) return true;
     }
     return false;
   }
@@ -298,29 +298,20 @@ class CollisionModel {
   /// Sets Slot::pose_link, Slot::center_P and the elements' X_PS / center_P, and
   /// sweepKinematics() to compute the pose links.
   void placeOnPoseLinks();
-  /// The pose of element e's shape given its link's pose: the link pose itself when the shape
-  /// frame is the identity, else the product, written into `scratch`.
-  static const Eigen::Isometry3d& shapePose(const Eigen::Isometry3d& X_WL, const Element& e,
-                                            Eigen::Isometry3d& scratch) {
-    if (e.identity_LS) return X_WL;
-    scratch = X_WL * e.source->X_LS;
-    return scratch;
-  }
   void buildSelfTables(const CollisionModelOptions& options);
   template <bool kFolded, class SceneNarrow, class SelfNarrow>
   bool sweep(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
              const unsigned char* skip, SceneNarrow& scene, SelfNarrow& self, bool obb_stage,
              bool inner_stage) const;
-  /// The pose of element e's shape from its slot's pose link (kFolded) or its own link.
+  /// The pose of element e's shape given the pose X of its slot's pose link (kFolded) or of
+  /// its own link: X itself when the shape frame is the identity there, else the product,
+  /// written into `scratch`.
   template <bool kFolded>
   static const Eigen::Isometry3d& placedShape(const Eigen::Isometry3d& X, const Element& e,
                                               Eigen::Isometry3d& scratch) {
-    if (kFolded) {
-      if (e.identity_PS) return X;
-      scratch = X * e.X_PS;
-      return scratch;
-    }
-    return shapePose(X, e, scratch);
+    if (kFolded ? e.identity_PS : e.identity_LS) return X;
+    scratch = X * (kFolded ? e.X_PS : e.source->X_LS);
+    return scratch;
   }
   double prismaticTravel(const RobotJoint& j) const;
 
@@ -344,6 +335,10 @@ class CollisionModel {
     int first = 0;  ///< its tables: self_tables_[first, first + count), on the grid of the first
     int count = 0;  ///< at most 4
     std::vector<std::uint8_t> packed;
+    /// Of a packed byte: bit 2m + 1 set when table m's cell is kColliding (2), bit 2m when it
+    /// is kFree (1).
+    static unsigned colliding(unsigned byte) { return byte & 0xAAu & ~(byte << 1); }
+    static unsigned free(unsigned byte) { return byte & 0x55u & ~(byte >> 1); }
   };
   std::vector<TableGroup> table_groups_;
   double table_padding_ = 0.0;  ///< the padding every table certifies
@@ -458,8 +453,8 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
     for (const TableGroup& g : table_groups_) {
       const int idx = self_tables_[g.first].index(q);
       const unsigned byte = idx < 0 ? 0u : g.packed[idx];
-      if (use_colliding && (byte & 0xAAu & ~(byte << 1))) return true;  // a cell kColliding (2)
-      const unsigned free = use_free ? byte & 0x55u & ~(byte >> 1) : 0u;  // cells kFree (1)
+      if (use_colliding && TableGroup::colliding(byte)) return true;
+      const unsigned free = use_free ? TableGroup::free(byte) : 0u;
       for (int m = 0; m < g.count; ++m) skip[g.first + m] = (free >> (2 * m)) & 1u;
     }
   } else if (q) {
