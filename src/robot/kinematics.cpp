@@ -95,6 +95,11 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
       for (int i = 0; i < 3; ++i) R_c(i, j) = i == perm[j] ? sign : 0.0;
     }
   s->identity_R = R_c == Eigen::Matrix3d::Identity();
+  s->perm = permutation;
+  for (int j = 0; j < 3; ++j) {
+    s->col[j] = permutation ? perm[j] : j;
+    s->sign[j] = splat(permutation ? R_c(perm[j], j) : 1.0);
+  }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) s->m[j][i] = splat(R_c(i, j));
     s->m[3][i] = splat(p_c[i]);
@@ -236,11 +241,17 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
       for (int k = 0; k < 8; ++k) a[k] = loadPair(A + 2 * k);
     }
     // [c | p] = [a | at] [R_c | p_c], both halves of every column; the sums in the order
-    // a0 * m0 + a1 * m1 + a2 * m2 (+ at first for p), with products of exact zeros and ones
-    // for the snapped permutations.
+    // a0 * m0 + a1 * m1 + a2 * m2 (+ at first for p).
+    // A signed permutation selects columns: for finite poses sign * column is exactly the sum
+    // the general product forms with its exact zeros and ones (up to the sign of a zero). The
+    // columns are read back from the reference pose just stored (a register cannot be picked
+    // by index).
+    const double* const A_ref = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data();
     for (int h = 0; h < 2; ++h) {
       if (s.identity_R) {
         c[h] = a[h], c[2 + h] = a[2 + h], c[4 + h] = a[4 + h];
+      } else if (s.perm) {
+        for (int j = 0; j < 3; ++j) c[2 * j + h] = loadPair(A_ref + 4 * s.col[j] + 2 * h) * s.sign[j];
       } else {
         for (int j = 0; j < 3; ++j) c[2 * j + h] = a[h] * s.m[j][0] + a[2 + h] * s.m[j][1] + a[4 + h] * s.m[j][2];
       }

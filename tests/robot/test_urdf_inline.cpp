@@ -202,6 +202,50 @@ BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
   }
 }
 
+// Joint origins turned by multiples of pi/2 (as most real URDFs write them, here all 24
+// rotations with their signs, as "1.5707963267948966" and as the Panda's "1.57079632679")
+// take a column-selecting path in Kinematics: against poses composed with Eigen.
+BOOST_AUTO_TEST_CASE(chain_of_quarter_turn_origins) {
+  const int n = 60;
+  const char* axes[7] = {"1 0 0", "0 1 0", "0 0 1", "-1 0 0", "0 -1 0", "0 0 -1", "0.6 0 0.8"};
+  const Vector3d axis_v[7] = {Vector3d::UnitX(),  Vector3d::UnitY(),  Vector3d::UnitZ(),     -Vector3d::UnitX(),
+                              -Vector3d::UnitY(), -Vector3d::UnitZ(), Vector3d(0.6, 0, 0.8)};
+  const char* quarter[4] = {"0", "1.5707963267948966", "3.141592653589793", "-1.57079632679"};
+  const double quarter_v[4] = {0.0, M_PI / 2, M_PI, -M_PI / 2};
+  std::mt19937_64 rng(11);
+  std::vector<Eigen::Matrix3d> R_o(n + 1);
+  std::string urdf = "<robot name=\"quarters\"><link name=\"l0\"/>\n";
+  for (int i = 1; i <= n; ++i) {
+    const int r = static_cast<int>(rng() % 4), p = static_cast<int>(rng() % 4), y = static_cast<int>(rng() % 4);
+    R_o[i] = (Eigen::AngleAxisd(quarter_v[y], Vector3d::UnitZ()) * Eigen::AngleAxisd(quarter_v[p], Vector3d::UnitY()) *
+              Eigen::AngleAxisd(quarter_v[r], Vector3d::UnitX())).toRotationMatrix();
+    urdf += "<link name=\"l" + std::to_string(i) +
+            "\"><collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>\n";
+    const bool fixed = i % 4 == 0;
+    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" + (fixed ? "fixed" : "continuous") +
+            "\"><parent link=\"l" + std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+            "\"/><origin xyz=\"0.1 -0.02 0.03\" rpy=\"" + quarter[r] + " " + quarter[p] + " " + quarter[y] +
+            "\"/><axis xyz=\"" + axes[i % 7] + "\"/></joint>\n";
+  }
+  urdf += "</robot>";
+  const auto m = dss::loadUrdf(write("quarters.urdf", urdf));
+  const dss::Kinematics kin(m);
+  std::uniform_real_distribution<double> angle(-4.0, 4.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<double> q(m.numActiveJoints());
+    for (double& v : q) v = angle(rng);
+    const auto X = kin.linkPoses(q);
+    Isometry3d ref = Isometry3d::Identity();
+    for (int i = 1; i <= n; ++i) {
+      const auto& joint = m.joints[m.jointIndex("j" + std::to_string(i))];
+      ref = ref * pose(Vector3d(0.1, -0.02, 0.03), R_o[i]);
+      if (joint.active_index >= 0) ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 7]));
+      const double err = (X[m.linkIndex("l" + std::to_string(i))].matrix() - ref.matrix()).norm();
+      BOOST_TEST_REQUIRE(err < 1e-10 * (1 + i), "link l" << i << " trial " << trial << " error " << err);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(fast_sin_cos_matches_libm) {
   for (int i = -200000; i <= 200000; ++i) {
     const double x = i * 1e-4 + 1e-7;

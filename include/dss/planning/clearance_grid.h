@@ -52,8 +52,10 @@ class ClearanceGrid {
     const double fy = (c.y() - origin_.y()) * inv_size_;
     const double fz = (c.z() - origin_.z()) * inv_size_;
     if (!(fx >= 0.0 && fx < n_[0] && fy >= 0.0 && fy < n_[1] && fz >= 0.0 && fz < n_[2])) return nullptr;
-    return &bound_[static_cast<std::size_t>(fz) * stride_z_ + static_cast<std::size_t>(fy) * stride_y_ +
-                   static_cast<std::size_t>(fx)];
+    // Converted through int (the counts are far below 2^31): a double to size_t conversion
+    // costs a comparison and a branch per axis on x86-64 without AVX-512.
+    const auto index = [](double f) { return static_cast<std::size_t>(static_cast<int>(f)); };
+    return &bound_[index(fz) * stride_z_ + index(fy) * stride_y_ + index(fx)];
   }
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();

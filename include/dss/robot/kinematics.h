@@ -7,7 +7,9 @@
 // moving links that lead to them are computed; links outside that set are left untouched in
 // the output array (pass all_links = true to compute every link). Joint axes along +-x, +-y,
 // +-z (nearly all real robots) take a short path with one sin/cos pair (computed two joints at
-// a time) and 12 products; poses are computed as pairs of doubles (SIMD registers).
+// a time) and 12 products; constant frames turned by multiples of pi/2 (most URDF origins)
+// select and negate columns instead of multiplying by a rotation; poses are computed as pairs
+// of doubles (SIMD registers).
 // Mimic joints read their leader's value: q = multiplier * q_leader + offset.
 // Thread safety: const queries on one Kinematics may run concurrently. A Kinematics keeps
 // no reference to its RobotModel.
@@ -64,6 +66,11 @@ class Kinematics {
     double multiplier;     // sign of an axis-aligned axis, times the mimic multiplier
     double offset;         // mimic offset times the same sign
     bool identity_R;       // R_c is exactly the identity: only the translation applies
+    /// R_c is a signed permutation (joint origins turned by multiples of pi/2): column j of
+    /// the product is sign[j] times column col[j] of the reference pose, with no sum.
+    bool perm;
+    int col[3];
+    Pair sign[3];
     Motion motion;
   };
 
