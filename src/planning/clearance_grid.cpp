@@ -25,7 +25,8 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   origin_ = region.lower;
   size_ = size;
   inv_size_ = 1.0 / size;
-  for (int a = 0; a < 3; ++a) n_[a] = n[a];
+  for (int a = 0; a < 3; ++a) count_[a] = static_cast<unsigned>(n[a]);
+  below_ = origin_ - Eigen::Vector3d::Constant(size);
   stride_y_ = static_cast<std::size_t>(n[0]);
   stride_z_ = stride_y_ * static_cast<std::size_t>(n[1]);
   bound_.assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0);

@@ -12,7 +12,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <Eigen/Core>
 
@@ -46,23 +51,34 @@ class ClearanceGrid {
   const Eigen::Vector3d& origin() const { return origin_; }
 
  private:
+  /// f truncated to int; INT_MIN for NaN and for values out of the int range.
+  static int toIndex(double f) {
+#if defined(__SSE2__)
+    return _mm_cvttsd_si32(_mm_set_sd(f));  // the x86 conversion, defined for every input
+#else
+    return f > -2147483648.0 && f < 2147483647.0 ? static_cast<int>(f) : std::numeric_limits<int>::min();
+#endif
+  }
   /// The voxel holding c, or null outside the grid (and for NaN).
   const std::uint8_t* voxel(const Eigen::Vector3d& c) const {
-    const double fx = (c.x() - origin_.x()) * inv_size_;
-    const double fy = (c.y() - origin_.y()) * inv_size_;
-    const double fz = (c.z() - origin_.z()) * inv_size_;
-    if (!(fx >= 0.0 && fx < n_[0] && fy >= 0.0 && fy < n_[1] && fz >= 0.0 && fz < n_[2])) return nullptr;
-    // Converted through int (the counts are far below 2^31): a double to size_t conversion
-    // costs a comparison and a branch per axis on x86-64 without AVX-512.
-    const auto index = [](double f) { return static_cast<std::size_t>(static_cast<int>(f)); };
-    return &bound_[index(fz) * stride_z_ + index(fy) * stride_y_ + index(fx)];
+    // Coordinates counted from one voxel below the grid: a voxel index i + 1 in [1, n], so that
+    // one unsigned comparison per axis rejects the outside (negative, beyond n, and the
+    // INT_MIN that the conversion gives for NaN and huge values). A point within rounding of
+    // a voxel face may land in the neighbour: the stored bounds keep a margin far above that.
+    const int ix = toIndex((c.x() - below_.x()) * inv_size_);
+    const int iy = toIndex((c.y() - below_.y()) * inv_size_);
+    const int iz = toIndex((c.z() - below_.z()) * inv_size_);
+    const unsigned x = static_cast<unsigned>(ix) - 1u, y = static_cast<unsigned>(iy) - 1u,
+                   z = static_cast<unsigned>(iz) - 1u;
+    if (!((x < count_[0]) & (y < count_[1]) & (z < count_[2]))) return nullptr;
+    return &bound_[z * stride_z_ + y * stride_y_ + x];
   }
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double size_ = 0.0;
   double inv_size_ = 0.0;
-  // An empty grid: no point is inside (fx < 0 fails for every finite point, NaN fails too).
-  double n_[3] = {0.0, 0.0, 0.0};  // voxel counts per axis
+  unsigned count_[3] = {0, 0, 0};  // voxel counts per axis (an empty grid: no point is inside)
+  Eigen::Vector3d below_ = Eigen::Vector3d::Zero();  // origin_ minus one voxel per axis
   std::size_t stride_y_ = 0, stride_z_ = 0;
   std::vector<std::uint8_t> bound_;
 };
