@@ -144,7 +144,8 @@ bool FclValidityChecker::pair(const fcl::CollisionGeometryd* a, const Eigen::Iso
   return fcl::collide(a, X_A, b, X_B, req, res) > 0;
 }
 
-bool FclValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL) const {
+bool FclValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL,
+                                  const unsigned char* table_skip) const {
   if (prefilter_ == FclPrefilter::kAabb) return collidesAabb(X_WL);
   std::uint64_t tests = 0;
   const auto& obstacles = model_->scene().obstacles;
@@ -158,7 +159,7 @@ bool FclValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL
         ++tests;
         return pair(elements_[a].get(), X_WA, elements_[b].get(), X_WB, self_padding_);
       },
-      obb_stage_, /*inner_stage=*/obb_stage_ && geometry_ == FclGeometry::kHull);
+      obb_stage_, /*inner_stage=*/obb_stage_ && geometry_ == FclGeometry::kHull, table_skip);
   slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   return hit;
 }

@@ -13,6 +13,7 @@ namespace {
 struct Scratch {
   std::vector<double> q;
   std::vector<Eigen::Isometry3d> X_WL;
+  std::vector<unsigned char> table_skip;  // CollisionModel::readTables
   void reserve(std::size_t joints, std::size_t links) {
     if (q.size() < joints) q.resize(joints);
     if (X_WL.size() < links) X_WL.resize(links, Eigen::Isometry3d::Identity());
@@ -53,18 +54,23 @@ bool ModelValidityChecker::isValidJoints(const double* q) const {
 }
 
 bool ModelValidityChecker::checkJoints(const double* q, Eigen::Isometry3d* X_WL) const {
+  const unsigned char* table_skip = nullptr;
   if (sweep_poses_ && model_->heldMatch(q)) {
-    // A pair certified colliding by its table needs no pose; the sweep needs only the pose
-    // links (CollisionModel::sweepKinematics).
-    if (model_->tablesCollide(q, self_padding_)) {
+    // A pair certified colliding by its table needs no pose; the tables are read once (the
+    // sweep takes the flags of the pairs certified free); the sweep needs only the pose links
+    // (CollisionModel::sweepKinematics).
+    std::vector<unsigned char>& skip = scratch().table_skip;
+    if (skip.size() < model_->selfTables().size()) skip.resize(model_->selfTables().size());
+    if (model_->readTables(q, self_padding_, skip.data())) {
       slot().collisions.fetch_add(1, std::memory_order_relaxed);
       return false;
     }
+    table_skip = skip.data();
     model_->sweepKinematics().computeLinkPoses(q, X_WL);
   } else {
     model_->kinematics().computeLinkPoses(q, X_WL);
   }
-  if (collides(q, X_WL)) {
+  if (collides(q, X_WL, table_skip)) {
     slot().collisions.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
@@ -110,8 +116,9 @@ DssValidityChecker::DssValidityChecker(const ompl::base::SpaceInformationPtr& si
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
 }
 
-bool DssValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL) const {
-  return collidesPadded(q, X_WL, scene_padding_, self_padding_);
+bool DssValidityChecker::collides(const double* q, const Eigen::Isometry3d* X_WL,
+                                  const unsigned char* table_skip) const {
+  return collidesPadded(q, X_WL, scene_padding_, self_padding_, table_skip);
 }
 
 double DssValidityChecker::clearance(const ompl::base::State* state) const {
@@ -141,7 +148,7 @@ double DssValidityChecker::clearance(const ompl::base::State* state) const {
 }
 
 bool DssValidityChecker::collidesPadded(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
-                                        double self_padding) const {
+                                        double self_padding, const unsigned char* table_skip) const {
   const CollisionModel& m = *model_;
   const auto& elements = m.elements();
   const auto& obstacles = m.scene().obstacles;
@@ -163,7 +170,7 @@ bool DssValidityChecker::collidesPadded(const double* q, const Eigen::Isometry3d
         return decideResult(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
                                       settings_.options, self_padding, settings_.algorithm));
       },
-      obb_stage_, /*inner_stage=*/obb_stage_);
+      obb_stage_, /*inner_stage=*/obb_stage_, table_skip);
   if (tests) slot().pair_tests.fetch_add(tests, std::memory_order_relaxed);
   if (cap) slot().cap_hits.fetch_add(1, std::memory_order_relaxed);
   return hit;

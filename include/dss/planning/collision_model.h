@@ -234,6 +234,21 @@ class CollisionModel {
     }
     return false;
   }
+  /// Reads every self-pair table once for a state with heldMatch(q): true when one certifies
+  /// a collision at this self padding (as tablesCollide); otherwise skip[t] (one flag per
+  /// table, selfTables().size()) is set when table t certifies its pair free at this padding,
+  /// and anyCollision can take the flags instead of reading the tables again.
+  bool readTables(const double* q, double self_padding, unsigned char* skip) const {
+    const bool use_colliding = self_padding >= table_padding_, use_free = self_padding <= table_padding_;
+    for (const TableGroup& g : table_groups_) {
+      const int idx = self_tables_[g.first].index(q);
+      const unsigned byte = idx < 0 ? 0u : g.packed[idx];
+      if (use_colliding && TableGroup::colliding(byte)) return true;
+      const unsigned free = use_free ? TableGroup::free(byte) : 0u;
+      for (int m = 0; m < g.count; ++m) skip[g.first + m] = (free >> (2 * m)) & 1u;
+    }
+    return false;
+  }
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
   const std::vector<int>& groupActive() const { return group_active_; }
   const std::vector<double>& held() const { return held_; }
@@ -282,10 +297,13 @@ class CollisionModel {
   /// obstacle box proves a collision, and the narrow phase is skipped. (Self pairs do not use
   /// them: their collisions are mostly decided by the tables, and 16 ball pairs per element
   /// pair cost about what they saved.)
+  /// `table_skip`: for a state with heldMatch(q) whose tables readTables() has already read
+  /// (and found no certified collision), its flags, so that the tables are not read twice.
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                     double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
-                    bool obb_stage = true, bool inner_stage = false) const;
+                    bool obb_stage = true, bool inner_stage = false,
+                    const unsigned char* table_skip = nullptr) const;
   template <class SceneNarrow, class SelfNarrow>
   bool anyCollision(const Eigen::Isometry3d* X_WL, double scene_padding, double self_padding,
                     SceneNarrow&& scene, SelfNarrow&& self, bool obb_stage = true) const {
@@ -438,7 +456,9 @@ inline std::uint64_t sphereBoxHits(const double* soa, std::size_t stride, std::s
 template <class SceneNarrow, class SelfNarrow>
 bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
                                   double self_padding, SceneNarrow&& scene, SelfNarrow&& self,
-                                  bool obb_stage, bool inner_stage) const {
+                                  bool obb_stage, bool inner_stage, const unsigned char* table_skip) const {
+  if (table_skip)  // read already (readTables), for a state with heldMatch(q)
+    return sweep<true>(X_WL, scene_padding, self_padding, table_skip, scene, self, obb_stage, inner_stage);
   // Self pairs whose table says "colliding" for this state: rejected before anything else.
   // The cells that let a pair be skipped ("free" at this padding) are kept for the self-pair
   // sweep.
@@ -449,14 +469,7 @@ bool CollisionModel::anyCollision(const double* q, const Eigen::Isometry3d* X_WL
   if (held) {
     // Every table was built at held() with the same padding: with the held joints there, a
     // table's cell applies as it is, and the two-bit cells of a group are read as masks.
-    const bool use_colliding = self_padding >= table_padding_, use_free = self_padding <= table_padding_;
-    for (const TableGroup& g : table_groups_) {
-      const int idx = self_tables_[g.first].index(q);
-      const unsigned byte = idx < 0 ? 0u : g.packed[idx];
-      if (use_colliding && TableGroup::colliding(byte)) return true;
-      const unsigned free = use_free ? TableGroup::free(byte) : 0u;
-      for (int m = 0; m < g.count; ++m) skip[g.first + m] = (free >> (2 * m)) & 1u;
-    }
+    if (readTables(q, self_padding, skip)) return true;
   } else if (q) {
     for (const TableGroup& g : table_groups_) {
       const int idx = self_tables_[g.first].index(q);

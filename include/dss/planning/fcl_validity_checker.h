@@ -57,7 +57,7 @@ class FclValidityChecker : public ModelValidityChecker {
   const fcl::CollisionGeometryd* obstacleGeometry(int o) const { return obstacles_[o].get(); }
 
  protected:
-  bool collides(const double* q, const Eigen::Isometry3d* X_WL) const override;
+  bool collides(const double* q, const Eigen::Isometry3d* X_WL, const unsigned char* table_skip) const override;
 
  private:
   bool pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A,

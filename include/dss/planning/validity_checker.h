@@ -54,7 +54,8 @@ class ModelValidityChecker : public ompl::base::StateValidityChecker {
   void setObbStage(bool on) { obb_stage_ = on; }
 
  protected:
-  virtual bool collides(const double* q, const Eigen::Isometry3d* X_WL) const = 0;
+  /// `table_skip`: see CollisionModel::anyCollision (null: the sweep reads the tables itself).
+  virtual bool collides(const double* q, const Eigen::Isometry3d* X_WL, const unsigned char* table_skip) const = 0;
   /// Poses (into X_WL) and collides() for one full active-joint vector, counted.
   bool checkJoints(const double* q, Eigen::Isometry3d* X_WL) const;
 
@@ -103,11 +104,11 @@ class DssValidityChecker : public ModelValidityChecker {
   double clearance(const ompl::base::State* state) const override;
 
  protected:
-  bool collides(const double* q, const Eigen::Isometry3d* X_WL) const override;
+  bool collides(const double* q, const Eigen::Isometry3d* X_WL, const unsigned char* table_skip) const override;
 
  private:
   bool collidesPadded(const double* q, const Eigen::Isometry3d* X_WL, double scene_padding,
-                      double self_padding) const;
+                      double self_padding, const unsigned char* table_skip = nullptr) const;
   Settings settings_;
 };
 
