@@ -301,6 +301,56 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     }
   grid_ = ClearanceGrid(region, boxes_);
   buildSelfTables(options);
+  buildPairBlocks();
+}
+
+void CollisionModel::buildPairBlocks() {
+  // Runs of consecutive pairs with the same slot a; a run with at least kMinBlock pairs outside
+  // the tables (the tables skip most of theirs already) gets an anchor when one exists.
+  constexpr int kMinBlock = 3;
+  const RobotModel& m = *robot_;
+  auto isAncestorOrSelf = [&](int anc, int link) {
+    for (int l = link; l >= 0; l = m.links[l].parent_link)
+      if (l == anc) return true;
+    return false;
+  };
+  // A bound on the distance from the anchor's origin to any point of slot s's sphere, or a
+  // negative value when a prismatic joint lies between them.
+  auto reach = [&](int anchor, int s) {
+    double bound = slots_[s].center_L.norm() + slots_[s].radius;
+    for (int l = slots_[s].link; l != anchor; l = m.links[l].parent_link) {
+      const RobotJoint& j = m.joints[m.links[l].parent_joint];
+      if (j.type == JointType::kPrismatic) return -1.0;
+      bound += j.X_PJ.translation().norm();
+    }
+    return bound;
+  };
+  pair_blocks_.clear();
+  for (std::size_t i = 0; i < self_pairs_.size();) {
+    std::size_t j = i;
+    int untabled = 0;
+    while (j < self_pairs_.size() && self_pairs_[j].a == self_pairs_[i].a) untabled += self_pairs_[j++].table < 0;
+    PairBlock blk;
+    blk.a = self_pairs_[i].a;
+    blk.begin = static_cast<int>(i);
+    blk.end = static_cast<int>(j);
+    if (untabled >= kMinBlock) {
+      // Of the pose links that are ancestors of every b slot, the one with the smallest ball.
+      double best = std::numeric_limits<double>::infinity();
+      for (const Slot& cand : slots_) {
+        const int anchor = cand.pose_link;
+        double radius = 0.0;
+        for (std::size_t k = i; k < j && radius >= 0.0; ++k) {
+          const int b = self_pairs_[k].b;
+          radius = isAncestorOrSelf(anchor, slots_[b].link) ? std::max(radius, reach(anchor, b)) : -1.0;
+        }
+        if (radius >= 0.0 && radius < best) best = radius, blk.anchor = anchor;
+      }
+      if (blk.anchor >= 0) blk.radius = best + 1e-9 * (1.0 + best);
+    }
+    pair_blocks_.push_back(blk);
+    i = j;
+  }
 }
 
 void CollisionModel::placeOnPoseLinks() {
