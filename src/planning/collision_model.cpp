@@ -314,14 +314,19 @@ void CollisionModel::buildPairBlocks() {
       if (l == anc) return true;
     return false;
   };
-  // A bound on the distance from the anchor's origin to any point of slot s's sphere, or a
-  // negative value when a prismatic joint lies between them.
+  // A bound on the distance from the anchor's origin to any point of slot s's sphere with the
+  // held joints at held() (the folded sweep, the only one that tests blocks), or a negative
+  // value when a prismatic joint of the group lies between them.
   auto reach = [&](int anchor, int s) {
     double bound = slots_[s].center_L.norm() + slots_[s].radius;
     for (int l = slots_[s].link; l != anchor; l = m.links[l].parent_link) {
       const RobotJoint& j = m.joints[m.links[l].parent_joint];
-      if (j.type == JointType::kPrismatic) return -1.0;
       bound += j.X_PJ.translation().norm();
+      if (j.type != JointType::kPrismatic) continue;
+      const int lead = j.active_index >= 0 ? j.active_index : j.mimic_active;
+      if (lead < 0 || in_group_[lead]) return -1.0;
+      const double d = j.active_index >= 0 ? held_[lead] : j.mimic_multiplier * held_[lead] + j.mimic_offset;
+      bound += std::abs(d) * j.axis.norm();
     }
     return bound;
   };
@@ -342,7 +347,8 @@ void CollisionModel::buildPairBlocks() {
         double radius = 0.0;
         for (std::size_t k = i; k < j && radius >= 0.0; ++k) {
           const int b = self_pairs_[k].b;
-          radius = isAncestorOrSelf(anchor, slots_[b].link) ? std::max(radius, reach(anchor, b)) : -1.0;
+          const double r = isAncestorOrSelf(anchor, slots_[b].link) ? reach(anchor, b) : -1.0;
+          radius = r < 0.0 ? -1.0 : std::max(radius, r);
         }
         if (radius >= 0.0 && radius < best) best = radius, blk.anchor = anchor;
       }

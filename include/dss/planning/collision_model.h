@@ -352,12 +352,13 @@ class CollisionModel {
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
   /// Self pairs [begin, end) share slot a (consecutive in self_pairs_). With anchor >= 0, the
-  /// spheres of all their b slots lie, in every state, inside the ball of `radius` about the
-  /// origin of link `anchor` (an ancestor of them all, and a pose link: its pose is computed
-  /// in both sweeps): when a's sphere misses that ball, no pair of the block can pass its own
-  /// sphere test, and the block is skipped in one test. The radius adds, from each b slot up
-  /// to the anchor, the lengths of the joint origins' offsets (revolute and continuous joints
-  /// turn about their origins; a path with a prismatic joint gets no anchor), the sphere
+  /// spheres of all their b slots lie, in every state with the held joints at held(), inside
+  /// the ball of `radius` about the origin of link `anchor` (an ancestor of them all, and a
+  /// pose link, so the folded sweep has its pose): when a's sphere misses that ball, no pair
+  /// of the block can pass its own sphere test, and the folded sweep skips the block in one
+  /// test. The radius adds, from each b slot up to the anchor, the lengths of the joint
+  /// origins' offsets (revolute and continuous joints turn about their origins), the held
+  /// travel of held prismatic joints (a prismatic joint of the group: no anchor), the sphere
   /// centre's distance from its link and the sphere radius. (The Panda: link0, link1 and
   /// link2 against link5 .. the fingers, 17 of its 21 self pairs, behind balls about link5.)
   struct PairBlock {
@@ -577,7 +578,7 @@ bool CollisionModel::sweep(const Eigen::Isometry3d* X_WL, double scene_padding, 
   }
   // Self pairs, block by block (see PairBlock).
   for (const PairBlock& blk : pair_blocks_) {
-    if (blk.anchor >= 0) {
+    if (kFolded && blk.anchor >= 0) {  // the held joints at held(): see PairBlock
       const double r = blk.radius + slots[blk.a].radius + self_padding;
       if ((centers[blk.a] - X_WL[blk.anchor].translation()).squaredNorm() > r * r) continue;
     }
