@@ -2,6 +2,7 @@
 #include "dss/planning/collision_model.h"
 
 #include <algorithm>
+#include <random>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -301,10 +302,10 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     }
   grid_ = ClearanceGrid(region, boxes_);
   buildSelfTables(options);
-  buildPairBlocks();
+  buildPairBlocks(options.pair_block_min_saving);
 }
 
-void CollisionModel::buildPairBlocks() {
+void CollisionModel::buildPairBlocks(double min_saving) {
   // Runs of consecutive pairs with the same slot a; a run with at least kMinBlock pairs outside
   // the tables (the tables skip most of theirs already) gets an anchor when one exists.
   constexpr int kMinBlock = 3;
@@ -357,6 +358,44 @@ void CollisionModel::buildPairBlocks() {
     pair_blocks_.push_back(blk);
     i = j;
   }
+  // A ball is kept only where it pays: on random states of the group (a fixed seed, the held
+  // joints at held()) it must rule its block out often enough to save more per-pair sphere
+  // tests than the one test it costs (a ball about a gripper whose links always overlap the
+  // shared link's sphere would only add work).
+  constexpr int kSamples = 256;
+  std::mt19937_64 rng(1);
+  std::vector<double> q = held_;
+  std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
+  std::vector<int> ruled_out(pair_blocks_.size(), 0);
+  for (int k = 0; k < kSamples; ++k) {
+    for (std::size_t a = 0; a < q.size(); ++a) {
+      if (!in_group_[a]) continue;
+      const RobotJoint& jt = m.joints[m.active_joints[a]];
+      const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
+      const double lo = bounded ? jt.limits.lower : -3.141592653589793;
+      const double hi = bounded ? jt.limits.upper : 3.141592653589793;
+      q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
+    sweep_kin_.computeLinkPoses(q.data(), X.data());
+    for (std::size_t b = 0; b < pair_blocks_.size(); ++b) {
+      const PairBlock& blk = pair_blocks_[b];
+      if (blk.anchor < 0) continue;
+      const Slot& sa = slots_[blk.a];
+      const double r = blk.radius + sa.radius;
+      ruled_out[b] += (X[sa.pose_link] * sa.center_P - X[blk.anchor].translation()).squaredNorm() > r * r;
+    }
+  }
+  std::vector<PairBlock> kept;
+  for (std::size_t b = 0; b < pair_blocks_.size(); ++b) {
+    PairBlock blk = pair_blocks_[b];
+    const double saved = static_cast<double>(ruled_out[b]) / kSamples * (blk.end - blk.begin);
+    if (blk.anchor >= 0 && saved < min_saving) blk.anchor = -1;
+    if (blk.anchor < 0 && !kept.empty() && kept.back().anchor < 0 && kept.back().end == blk.begin)
+      kept.back().end = blk.end;  // one run of pairs without a ball
+    else
+      kept.push_back(blk);
+  }
+  pair_blocks_ = std::move(kept);
 }
 
 void CollisionModel::placeOnPoseLinks() {
