@@ -2,9 +2,9 @@
 #include "dss/planning/collision_model.h"
 
 #include <algorithm>
-#include <random>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <set>
 #include <sstream>
 #include <stdexcept>
