@@ -192,10 +192,8 @@ void checkThinLunes(double min_log_eps) {
     const double eps = std::pow(10.0, -1.0 - (min_log_eps - 1.0) * (trial % 100) / 99.0);
     const Vec3d b = -(std::cos(eps) * a + std::sin(eps) * perp);
     auto pole = [&](const Vec3d& v) {
-      detail::Pole<W> p;
+      detail::Pole<W, false> p;  // the plain modes' pole: hi only
       p.hi = (v * std::pow(10.0, scale(rng))).template cast<W>();
-      p.lo.setZero();
-      p.norm = detail::SphericalPolygon<W, false>::normBound(p.hi);
       return p;
     };
     detail::SphericalPolygon<W, false> poly;

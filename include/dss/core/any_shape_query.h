@@ -18,6 +18,9 @@ template <class S>
 struct Ref {
   const S& s;
   static constexpr bool kExactVertices = false;
+  // Forwarded so that posing a referenced ball skips the rotation, as posing the ball would.
+  static constexpr bool kRotationInvariant = RotationInvariant<S>::value;
+  static constexpr bool kCenteredAtOrigin = CenteredAtOrigin<S>::value;
   Vec3d support(const Vec3d& d, const Vec3d& shift) const { return s.support(d, shift); }
   Vec3d center() const { return s.center(); }
   Vec3d anchor() const { return s.anchor(); }

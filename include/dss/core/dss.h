@@ -129,7 +129,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
   const Difference<A, B, W, Exact> diff(a, b);
   using Poly = SphericalPolygon<W, Exact>;
   Poly poly;
-  Pole<W> pole;
+  Pole<W, Exact> pole;
   Vec3<W> pa, pb;
   diff.centers(pa, pb);
   pole.hi = pa - pb;
@@ -199,14 +199,18 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
       }
     }
     if (result.iterations == 1) {
-      Pole<W> first;
+      Pole<W, Exact> first;
       first.hi = start_a - start_b;
-      first.lo = diff.error(start_a, start_b);
-      first.norm = Poly::normBound(first.hi);
+      if constexpr (Exact) {
+        first.lo = diff.error(start_a, start_b);
+        first.norm = Poly::normBound(first.hi);
+      }
       poly.init(first);
     }
-    pole.lo = diff.error(pa, pb);
-    pole.norm = Poly::normBound(pole.hi);
+    if constexpr (Exact) {
+      pole.lo = diff.error(pa, pb);
+      pole.norm = Poly::normBound(pole.hi);
+    }
     switch (poly.clip(pole)) {
       case ClipResult::kEmpty:
         return result;

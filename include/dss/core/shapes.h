@@ -59,9 +59,12 @@ struct BoxT {
   static constexpr bool kExactVertices = false;
   static constexpr bool kCenteredAtOrigin = true;
   static BoxT fromSize(const Vec3<T>& size) { return BoxT{size / T(2)}; }
+  // The corner on d's side: copysign is a bit operation, where a comparison per axis would be
+  // a branch that random directions mispredict half the time. (A zero component may pick
+  // either face: both maximise d.x.)
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    return Vec3<T>(d.x() >= T(0) ? half.x() : -half.x(), d.y() >= T(0) ? half.y() : -half.y(),
-                   d.z() >= T(0) ? half.z() : -half.z()) -
+    return Vec3<T>(std::copysign(half.x(), d.x()), std::copysign(half.y(), d.y()),
+                   std::copysign(half.z(), d.z())) -
            shift;
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
@@ -79,7 +82,7 @@ struct CapsuleT {
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T n = d.norm();
     Vec3<T> p = n > T(0) ? Vec3<T>(d * (radius / n)) : Vec3<T>::Zero();
-    p.z() += d.z() >= T(0) ? half_length : -half_length;
+    p.z() += std::copysign(half_length, d.z());  // the end cap on d's side, without a branch
     return p - shift;
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
@@ -97,7 +100,7 @@ struct CylinderT {
   Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
     const T s = r > T(0) ? radius / r : T(0);
-    return Vec3<T>(d.x() * s, d.y() * s, d.z() >= T(0) ? half_length : -half_length) - shift;
+    return Vec3<T>(d.x() * s, d.y() * s, std::copysign(half_length, d.z())) - shift;
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }

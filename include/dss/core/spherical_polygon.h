@@ -26,11 +26,18 @@ namespace dss::detail {
 /// A point of the Minkowski difference: hi is its floating-point value; in the exact mode lo
 /// holds the rounding error of hi = fl(a - b), so that hi + lo = a - b exactly. norm is an
 /// upper bound of |hi| (its 1-norm: no square root on the hot path).
-template <class W>
+template <class W, bool Exact = true>
 struct Pole {
   Vec3<W> hi;
   Vec3<W> lo;
   W norm;
+};
+
+/// The plain modes decide every sign from hi alone: their poles carry nothing else, so that
+/// the polygon moves three values per pole instead of seven.
+template <class W>
+struct Pole<W, false> {
+  Vec3<W> hi;
 };
 
 /// An approximation of 1/sqrt(x) for x > 0, to about 12 bits where the hardware has a
@@ -51,15 +58,16 @@ enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow };
 template <class W, bool Exact>
 class SphericalPolygon {
  public:
+  using PoleT = Pole<W, Exact>;
   static constexpr int kCapacity = 32;
   static constexpr W kUnit = std::numeric_limits<W>::epsilon() / W(2);
 
-  void init(const Pole<W>& p0) {
+  void init(const PoleT& p0) {
     poles_[0] = p0;
     count_ = 1;
   }
   int size() const { return count_; }
-  const Pole<W>& pole(int i) const { return poles_[i]; }
+  const PoleT& pole(int i) const { return poles_[i]; }
 
   /// The next test direction (not normalised): a point inside the polygon -- the sum of its
   /// unit vertices (the paper's renormalised average), or the middle of a lune.
@@ -91,7 +99,7 @@ class SphericalPolygon {
   /// An upper bound of |hi| without a square root.
   static DSS_INLINE W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
 
-  DSS_INLINE ClipResult clip(const Pole<W>& q) {
+  DSS_INLINE ClipResult clip(const PoleT& q) {
     if (count_ == 1) return clipHemisphere(q);
     if (count_ == 2) return clipLune(q);
     return clipPolygon(q);
@@ -100,7 +108,7 @@ class SphericalPolygon {
  private:
   // Sign of det(a, b, q) = (a x b).q from the cached unit vertex u = fl((a x b)/|a x b|) and
   // its error bound e: |u.q - det/|a x b|| <= e |q|_1. Below it the exact predicate decides.
-  static DSS_INLINE int detSign(const Vec3<W>& u, W e, const Pole<W>& a, const Pole<W>& b, const Pole<W>& q) {
+  static DSS_INLINE int detSign(const Vec3<W>& u, W e, const PoleT& a, const PoleT& b, const PoleT& q) {
     const W d = u.dot(q.hi);
     if constexpr (!Exact) {
       return (d > W(0)) - (d < W(0));
@@ -117,7 +125,7 @@ class SphericalPolygon {
   }
 
   // Sign of the k-th component of a x b (k = 0: a_y b_z - a_z b_y, ...).
-  static int crossSign(const Pole<W>& a, const Pole<W>& b, int k) {
+  static int crossSign(const PoleT& a, const PoleT& b, int k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     const W m = a.hi[i] * b.hi[j] - a.hi[j] * b.hi[i];
     if constexpr (Exact) {
@@ -128,7 +136,7 @@ class SphericalPolygon {
     return (m > W(0)) - (m < W(0));
   }
 
-  static int dotSign(const Pole<W>& a, const Pole<W>& b) {
+  static int dotSign(const PoleT& a, const PoleT& b) {
     const W d = a.hi.dot(b.hi);
     if constexpr (Exact) {
       if (!(std::abs(d) > W(8) * kUnit * a.norm * b.norm)) {
@@ -144,9 +152,9 @@ class SphericalPolygon {
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
   // covers all of it with margin.
-  DSS_INLINE void cacheVertex(int i, const Pole<W>& a, const Pole<W>& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
+  DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
 
-  DSS_INLINE void setUnit(int i, const Vec3<W>& v, const Pole<W>& a, const Pole<W>& b) {
+  DSS_INLINE void setUnit(int i, const Vec3<W>& v, const PoleT& a, const PoleT& b) {
     const W n2 = v.squaredNorm();
     if (n2 > W(0)) {
       const W inv = approxInvSqrt(n2);  // unit_ has norm 1 within 1e-3: see detSign's bound
@@ -158,21 +166,21 @@ class SphericalPolygon {
     }
   }
 
-  void setLune(const Pole<W>& a, const Pole<W>& b) {
+  void setLune(const PoleT& a, const PoleT& b) {
     poles_[0] = a;
     poles_[1] = b;
     count_ = 2;
     cacheVertex(0, a, b);
   }
 
-  DSS_INLINE ClipResult clipHemisphere(const Pole<W>& q) {
-    const Pole<W>& p = poles_[0];
+  DSS_INLINE ClipResult clipHemisphere(const PoleT& q) {
+    const PoleT& p = poles_[0];
     const Vec3<W> v = p.hi.cross(q.hi);
     // The floating-point cross product decides "not parallel" when a component clears its
     // rounding bound (3u |p|_1 |q|_1, doubled); otherwise the exact minors do.
-    const W bound = W(8) * kUnit * p.norm * q.norm;
     bool parallel;
     if constexpr (Exact) {
+      const W bound = W(8) * kUnit * p.norm * q.norm;
       parallel = !(std::abs(v.x()) > bound || std::abs(v.y()) > bound || std::abs(v.z()) > bound) &&
                  crossSign(p, q, 0) == 0 && crossSign(p, q, 1) == 0 && crossSign(p, q, 2) == 0;
     } else {
@@ -189,8 +197,8 @@ class SphericalPolygon {
     return ClipResult::kChanged;
   }
 
-  DSS_INLINE ClipResult clipLune(const Pole<W>& q) {
-    const Pole<W> p0 = poles_[0], p1 = poles_[1];
+  DSS_INLINE ClipResult clipLune(const PoleT& q) {
+    const PoleT p0 = poles_[0], p1 = poles_[1];
     const int s = detSign(unit_[0], err(0), p0, p1, q);
     // The lune's vertex p0 x p1 (unit_[0]) is a vertex of either triangle, as itself or
     // negated (fl(p1 x p0) = -fl(p0 x p1) bit for bit): only two vertices are new.
@@ -246,7 +254,7 @@ class SphericalPolygon {
     if constexpr (Exact) err_[to] = err_[from];
   }
 
-  DSS_INLINE ClipResult clipPolygon(const Pole<W>& q) {
+  DSS_INLINE ClipResult clipPolygon(const PoleT& q) {
     bool keep[kCapacity];
     int kept = 0;
     for (int i = 0; i < count_; ++i) {
@@ -294,7 +302,7 @@ class SphericalPolygon {
     return ClipResult::kChanged;
   }
 
-  Pole<W> poles_[kCapacity];
+  PoleT poles_[kCapacity];
   Vec3<W> unit_[kCapacity];  // unit vertex between poles i and i+1 (zero if degenerate)
   W err_[Exact ? kCapacity : 1];  // filter bound of detSign (exact mode only)
   int count_ = 0;
