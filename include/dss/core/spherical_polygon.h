@@ -155,14 +155,22 @@ class SphericalPolygon {
   DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
 
   DSS_INLINE void setUnit(int i, const Vec3<W>& v, const PoleT& a, const PoleT& b) {
+    W e = W(0);
+    unitVertex(v, a, b, unit_[i], e);
+    if constexpr (Exact) err_[i] = e;
+  }
+
+  // The unit vertex u of v = a x b and (exact mode) its filter bound e.
+  static DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u, W& e) {
+    (void)a, (void)b, (void)e;
     const W n2 = v.squaredNorm();
     if (n2 > W(0)) {
-      const W inv = approxInvSqrt(n2);  // unit_ has norm 1 within 1e-3: see detSign's bound
-      unit_[i] = v * inv;
-      if constexpr (Exact) err_[i] = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
+      const W inv = approxInvSqrt(n2);  // u has norm 1 within 1e-3: see detSign's bound
+      u = v * inv;
+      if constexpr (Exact) e = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
     } else {
-      unit_[i].setZero();
-      if constexpr (Exact) err_[i] = std::numeric_limits<W>::infinity();  // always exact
+      u.setZero();
+      if constexpr (Exact) e = std::numeric_limits<W>::infinity();  // always exact
     }
   }
 
@@ -200,25 +208,38 @@ class SphericalPolygon {
   DSS_INLINE ClipResult clipLune(const PoleT& q) {
     const PoleT p0 = poles_[0], p1 = poles_[1];
     const int s = detSign(unit_[0], err(0), p0, p1, q);
-    // The lune's vertex p0 x p1 (unit_[0]) is a vertex of either triangle, as itself or
-    // negated (fl(p1 x p0) = -fl(p0 x p1) bit for bit): only two vertices are new.
-    if (s > 0) {  // vertex p0 x p1 cut off: q goes between p0 and p1
-      const Vec3<W> u01 = unit_[0];
-      const W e01 = err(0);
-      poles_[1] = q;
-      poles_[2] = p1;
+    if (s != 0) {
+      // Either triangle keeps the lune's vertex u01 = p0 x p1 (as itself or negated) and
+      // gains two on the lines of c1 = p0 x q and c2 = q x p1 (fl(b x a) = -fl(a x b) bit for
+      // bit, and so are their unit vectors and bounds):
+      //   s > 0 (u01 cut off, q between p0 and p1): poles p0, q, p1; vertices c1, c2, -u01;
+      //   s < 0 (-u01 cut off):                     poles p0, p1, q; vertices u01, -c2, -c1.
+      // Both new vertices are computed before the side is known and the side only selects
+      // (no branch on s: it is a coin toss for the predictor).
+      Vec3<W> c1, c2;
+      W e1 = W(0), e2 = W(0);
+      unitVertex(p0.hi.cross(q.hi), p0, q, c1, e1);
+      unitVertex(q.hi.cross(p1.hi), q, p1, c2, e2);
+      const Vec3<W> u01 = unit_[0], n_u01 = -u01, n_c1 = -c1, n_c2 = -c2;
+      // Tables indexed by the side: loads, where a conditional would compile to a branch.
+      const int cut = s > 0;
+      const PoleT* const second[2] = {&p1, &q};
+      const PoleT* const third[2] = {&q, &p1};
+      const Vec3<W>* const v0[2] = {&u01, &c1};
+      const Vec3<W>* const v1[2] = {&n_c2, &c2};
+      const Vec3<W>* const v2[2] = {&n_c1, &n_u01};
+      poles_[1] = *second[cut];
+      poles_[2] = *third[cut];
+      unit_[0] = *v0[cut];
+      unit_[1] = *v1[cut];
+      unit_[2] = *v2[cut];
+      if constexpr (Exact) {
+        const W e0[2] = {err_[0], e1}, e2s[2] = {e1, err_[0]};
+        err_[0] = e0[cut];
+        err_[1] = e2;
+        err_[2] = e2s[cut];
+      }
       count_ = 3;
-      cacheVertex(0, p0, q);
-      cacheVertex(1, q, p1);
-      unit_[2] = -u01;
-      if constexpr (Exact) err_[2] = e01;
-      return ClipResult::kChanged;
-    }
-    if (s < 0) {  // vertex p1 x p0 cut off: the triangle p0, p1, q keeps p0 x p1
-      poles_[2] = q;
-      count_ = 3;
-      cacheVertex(1, p1, q);
-      cacheVertex(2, q, p0);
       return ClipResult::kChanged;
     }
     // q in the plane of p0 and p1: q = alpha p0 + beta p1. Solve in the coordinate plane
