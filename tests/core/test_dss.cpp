@@ -230,6 +230,68 @@ BOOST_AUTO_TEST_CASE(touching_boxes_exact) {
   }
 }
 
+// The exact mode runs a filtered search first (plain signs, each checked against its error
+// bound) and reruns the exact search only when the filter cannot certify a sign. Wherever
+// the filtered search answers, it must have taken the exact search's decisions: the same
+// answer, iterations and certificate. Near-contact and exactly touching pairs make it give
+// up, and there the exact mode must still equal the exact search.
+BOOST_AUTO_TEST_CASE(filtered_pass_takes_the_exact_decisions) {
+  std::mt19937_64 rng(31);
+  int decided = 0, unsure = 0;
+  auto check = [&](const auto& a, const auto& b) {
+    using A = std::decay_t<decltype(a)>;
+    using B = std::decay_t<decltype(b)>;
+    const Result ref = detail::runDssExactOnly(a, b, 100);
+    Result fast;
+    if (detail::searchDss<double, false, true, A, B, false>(a, b, 100, 0, fast)) {
+      ++decided;
+      BOOST_TEST(fast.intersect == ref.intersect);
+      BOOST_TEST(fast.iterations == ref.iterations);
+      BOOST_TEST((fast.separating_direction == ref.separating_direction));
+    } else {
+      ++unsure;
+    }
+    Options o;
+    o.max_iterations = 100;
+    const Result r = intersect(a, b, o);
+    BOOST_TEST(r.intersect == ref.intersect);
+    BOOST_TEST(r.iterations == ref.iterations);
+    BOOST_TEST((r.status == ref.status));
+  };
+  for (int i = 0; i < 100; ++i) {
+    const long long range = 1LL << 30;
+    const auto a = randomTet(rng, range, 0);
+    const auto b0 = randomTet(rng, range, 0);
+    if (!test::intersectExact(a, b0)) continue;
+    long long lo = 0, hi = 8 * range;
+    while (hi - lo > 1) {
+      const long long mid = lo + (hi - lo) / 2;
+      (test::intersectExact(a, translated(b0, mid)) ? lo : hi) = mid;
+    }
+    const double s = 1.0 / double(range);
+    for (long long t : {lo, hi, lo - range / 4, hi + range / 4}) {
+      const ConvexHull ha = toHull(a, s), hb = toHull(translated(b0, t), s);
+      check(ha, hb);
+    }
+  }
+  const Mat3d I = Mat3d::Identity();
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3d axis = Vec3d(u(rng), u(rng), u(rng)).normalized();
+    const Mat3d R = Eigen::AngleAxisd(3 * u(rng), axis).toRotationMatrix();
+    const Vec3d p(1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng));
+    check(posed(Box::fromSize({1, 0.5, 0.8}), R, p), posed(Box::fromSize({0.7, 0.9, 0.3}), I, Vec3d(0, 0, 0)));
+    check(posed(Cylinder::fromLength(0.3, 1.0), R, p), posed(Capsule::fromLength(0.2, 0.6), I, Vec3d(0, 0, 0)));
+    check(posed(Cone::fromLength(0.4, 0.9), R, p), posed(Sphere{0.5}, I, Vec3d(0, 0, 0)));
+  }
+  for (const Vec3d dir : {Vec3d(1, 0, 0), Vec3d(1, 1, 0), Vec3d(1, 1, 1)}) {  // exactly touching
+    check(posed(Box::fromSize({2, 2, 2}), I, Vec3d(0, 0, 0)), posed(Box::fromSize({2, 2, 2}), I, Vec3d(2 * dir)));
+  }
+  BOOST_TEST_MESSAGE("filtered search: " << decided << " decided, " << unsure << " handed to the exact search");
+  BOOST_TEST(decided > 1000);
+  BOOST_TEST(unsure > 0);
+}
+
 BOOST_AUTO_TEST_CASE(symmetry_and_determinism) {
   std::mt19937_64 rng(5);
   for (int i = 0; i < 500; ++i) {

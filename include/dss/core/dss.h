@@ -54,23 +54,31 @@ struct Difference {
   Vec3<SA> shift_a;
   Vec3<SB> shift_b;
   W err_scale;  // |n| * err_scale bounds the rounding of h_A(n) + h_B(-n) from the supports
+  W scale;      // bounds |p|_1 for every point p of A - B in the working frame (exact mode)
+  W sep_scale;  // err_scale + 4u scale: |n|_1 * sep_scale bounds the error of fl(n.q)
 
   Difference(const A& sa, const B& sb) : a(sa), b(sb) {
     const Vec3d c = chooseShift(sa, sb);
     shift_a = c.template cast<SA>();
     shift_b = c.template cast<SB>();
     err_scale = W(0);
+    scale = W(0);
+    sep_scale = W(0);
     if constexpr (!Exact) return;
     // 1-norms bound the distances without a square root on the query's critical path.
     const double mag = double(sa.magnitude()) + double(sb.magnitude()) +
                        (sa.anchor().template cast<double>() - c).template lpNorm<1>() +
                        (sb.anchor().template cast<double>() - c).template lpNorm<1>();
+    // |x - c|_1 <= sqrt(3) |x - anchor| + |anchor - c|_1 for x in a shape; 2 leaves room for
+    // the rounding of the support points.
+    scale = W(2 * mag);
     // Each support value h(n) = n.x is off by a few ulps of |n| (|x_S| + |t|): rotations of
     // the direction and of the point, normalisations, the translation and the dot product.
     // 32 u covers them with margin for both shapes (float supports use float's u).
     const double u = std::max(double(std::numeric_limits<SA>::epsilon()),
                               double(std::numeric_limits<SB>::epsilon())) / 2;
     err_scale = W(32 * u * mag);
+    sep_scale = err_scale + W(4) * (std::numeric_limits<W>::epsilon() / 2) * scale;
   }
 
   /// The centres of A and B (points of the shapes), in the working frame.
@@ -123,11 +131,14 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
   return exact::dotDiffSign(n.data(), pa.data(), pb.data());
 }
 
-template <class W, bool Exact, class A, class B, bool kHybrid = false>
-Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
-  Result result;
-  const Difference<A, B, W, Exact> diff(a, b);
-  using Poly = SphericalPolygon<W, Exact>;
+/// One search. Sign policies as in SphericalPolygon: plain (Exact = Filter = false), filtered
+/// (Filter only: returns false, leaving `result` meaningless, as soon as a sign or the final
+/// separation cannot be certified) and exact (both). Returns true with the answer in `result`.
+template <class W, bool Exact, bool Filter, class A, class B, bool kHybrid>
+DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
+  constexpr bool kOnlyFilter = Filter && !Exact;
+  const Difference<A, B, W, Filter> diff(a, b);
+  using Poly = SphericalPolygon<W, Exact, Filter>;
   Poly poly;
   Pole<W, Exact> pole;
   Vec3<W> pa, pb;
@@ -135,10 +146,10 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
   pole.hi = pa - pb;
   if (!pole.hi.allFinite()) {
     result.status = Status::kInvalidInput;
-    return result;
+    return true;
   }
   // fl(a - b) is zero only when a == b: the centres coincide (and the rounding error is zero).
-  if (pole.hi.isZero(0)) return result;
+  if (pole.hi.isZero(0)) return true;
   // The first pole enters the polygon only if the first step does not separate (the usual
   // case at low collision density): its rounding error waits until then.
   const Vec3<W> start_a = pa, start_b = pb;
@@ -160,7 +171,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     }
     if (result.iterations >= max_iterations) {
       result.status = Status::kIterationLimit;
-      return result;
+      return true;
     }
     ++result.iterations;
     diff.support(n, pa, pb);
@@ -168,28 +179,29 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     const W t = n.dot(pole.hi);
     if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
       result.status = Status::kInvalidInput;
-      return result;
+      return true;
     }
     if (t < W(0)) {
-      if constexpr (!Exact) {
+      if constexpr (!Filter) {
         result.intersect = false;
         result.separating_direction = n.template cast<double>();
-        return result;
+        return true;
       } else {
         const W nn = Poly::normBound(n);  // bounds |n|: no square root needed
-        const W u = std::numeric_limits<W>::epsilon() / 2;
         // Certified when even the rounding of both supports and of the dot cannot lift it.
-        if (t + nn * (diff.err_scale + W(4) * u * Poly::normBound(pole.hi)) < W(0)) {
+        // (|q|_1 <= scale, so err_scale + 4u |q|_1 <= sep_scale.)
+        if (t + nn * diff.sep_scale < W(0)) {
           result.intersect = false;
           result.separating_direction = n;
-          return result;
+          return true;
         }
+        if constexpr (kOnlyFilter) return false;
         if constexpr (A::kExactVertices && B::kExactVertices) {
           Vec3d xa, xb;
           if (exactSeparationSign(a, b, n, xa, xb) < 0) {
             result.intersect = false;
             result.separating_direction = n;
-            return result;
+            return true;
           }
           pa = xa, pb = xb;
           pole.hi = pa - pb;
@@ -199,6 +211,11 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
       }
     }
     if (result.iterations == 1) {
+      if constexpr (kOnlyFilter) {
+        // Scales whose cubes leave the double range go straight to the exact search.
+        if (!(diff.scale > W(1e-90) && diff.scale < W(1e90))) return false;
+        poly.setScale(diff.scale);
+      }
       Pole<W, Exact> first;
       first.hi = start_a - start_b;
       if constexpr (Exact) {
@@ -213,10 +230,12 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     }
     switch (poly.clip(pole)) {
       case ClipResult::kEmpty:
-        return result;
+        return true;
       case ClipResult::kOverflow:
         result.status = Status::kIterationLimit;
-        return result;
+        return true;
+      case ClipResult::kUnsure:
+        return false;
       default:
         break;
     }
@@ -226,6 +245,38 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
       v = closestOnSimplex(simplex, simplex_size);
     }
   }
+}
+
+/// The exact search, kept out of line: it runs only for the rare queries the filter cannot
+/// decide, and inlining it would double the code of every exact-mode query.
+template <class W, class A, class B, bool kHybrid>
+DSS_NOINLINE void searchExact(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
+  searchDss<W, true, true, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
+}
+
+/// The search in one of the three modes. The exact mode first runs the filtered search, which
+/// makes the exact search's decisions at the plain search's cost (no rounding errors carried,
+/// one bound per sign), and reruns the query exactly only when a sign was too close to call.
+template <class W, bool Exact, class A, class B, bool kHybrid = false>
+Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
+  Result result;
+  if constexpr (Exact) {
+    if (searchDss<W, false, true, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result))
+      return result;
+    result = Result{};
+    searchExact<W, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
+  } else {
+    searchDss<W, false, false, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
+  }
+  return result;
+}
+
+/// The exact search alone, without the filtered first pass (for tests).
+template <class A, class B>
+Result runDssExactOnly(const A& a, const B& b, int max_iterations) {
+  Result result;
+  searchDss<double, true, true, A, B, false>(a, b, max_iterations, 0, result);
+  return result;
 }
 
 }  // namespace detail

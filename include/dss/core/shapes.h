@@ -10,8 +10,9 @@
 //       exactly where they can).
 //   Vec3<T> center() const      a point of the shape (interior when it has one).
 //   Vec3<T> anchor() const      the translation a pose adds (zero for unposed shapes).
-//   T magnitude() const         an upper bound of |x - anchor()| over the shape; it scales
-//                               the rounding-error bounds of the exact mode.
+//   T magnitude() const         an upper bound of |x - anchor()| over the shape (need not be
+//                               tight: it is cheap); it scales the rounding-error bounds of
+//                               the exact mode.
 //   static constexpr bool kRotationInvariant, kCenteredAtOrigin   (optional)
 //                               a ball's support ignores the rotation of its frame, and a
 //                               shape whose center() is its origin says so: Posed skips
@@ -69,7 +70,8 @@ struct BoxT {
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
-  T magnitude() const { return half.norm(); }
+  // |half|_1 >= |half|: a bound without a square root (it only scales error bounds).
+  T magnitude() const { return half.x() + half.y() + half.z(); }
 };
 
 template <class T>
@@ -104,7 +106,7 @@ struct CylinderT {
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
-  T magnitude() const { return std::sqrt(radius * radius + half_length * half_length); }
+  T magnitude() const { return radius + half_length; }
 };
 
 template <class T>
@@ -125,7 +127,7 @@ struct ConeT {
   // The centroid of a cone lies a quarter of the way from the base to the apex.
   Vec3<T> center() const { return Vec3<T>(T(0), T(0), -half_length / T(2)); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
-  T magnitude() const { return std::sqrt(radius * radius + half_length * half_length); }
+  T magnitude() const { return radius + half_length; }
 };
 
 template <class T>

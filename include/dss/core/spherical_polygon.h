@@ -8,6 +8,16 @@
 // mode. Special shapes: one pole (a hemisphere), two poles (a lune, whose two vertices are
 // antipodal; a new pole coplanar with both narrows it to another lune, decided by the signs
 // of q = alpha p_0 + beta p_1). Capacity is fixed: no allocation.
+//
+// Three sign policies, by the template flags Exact and Filter:
+//   plain    (false, false): the floating-point sign of every determinant;
+//   filtered (false, true):  the same signs, each checked against its rounding-error bound;
+//                            any sign the bound cannot certify makes clip() answer kUnsure
+//                            (the caller then reruns the whole query exactly). Poles carry
+//                            hi only and the bounds use one scale M >= |p|_1 for every pole;
+//   exact    (true, true):   poles carry their rounding error; a sign the filter cannot
+//                            certify is computed exactly.
+// A filtered search that never answers kUnsure took exactly the decisions of the exact one.
 #pragma once
 
 #include <cmath>
@@ -53,10 +63,13 @@ DSS_INLINE W approxInvSqrt(W x) {
   return W(1) / std::sqrt(x);
 }
 
-enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow };
+enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow, kUnsure };
 
-template <class W, bool Exact>
+template <class W, bool Exact, bool Filter = Exact>
 class SphericalPolygon {
+  static_assert(Filter || !Exact, "the exact policy filters its signs");
+  static constexpr bool kOnlyFilter = Filter && !Exact;
+
  public:
   using PoleT = Pole<W, Exact>;
   static constexpr int kCapacity = 32;
@@ -65,6 +78,13 @@ class SphericalPolygon {
   void init(const PoleT& p0) {
     poles_[0] = p0;
     count_ = 1;
+  }
+
+  /// Filtered policy: m bounds |p|_1 for every pole that will enter (a point of the
+  /// difference: the sum of the shapes' extents about the working frame's origin).
+  void setScale(W m) {
+    scale_ = m;
+    scale2_ = W(8) * kUnit * m * m;
   }
   int size() const { return count_; }
   const PoleT& pole(int i) const { return poles_[i]; }
@@ -100,17 +120,23 @@ class SphericalPolygon {
   static DSS_INLINE W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
 
   DSS_INLINE ClipResult clip(const PoleT& q) {
-    if (count_ == 1) return clipHemisphere(q);
-    if (count_ == 2) return clipLune(q);
-    return clipPolygon(q);
+    const ClipResult r = count_ == 1 ? clipHemisphere(q) : count_ == 2 ? clipLune(q) : clipPolygon(q);
+    if constexpr (kOnlyFilter) {
+      if (unsure_) return ClipResult::kUnsure;
+    }
+    return r;
   }
 
  private:
   // Sign of det(a, b, q) = (a x b).q from the cached unit vertex u = fl((a x b)/|a x b|) and
-  // its error bound e: |u.q - det/|a x b|| <= e |q|_1. Below it the exact predicate decides.
-  static DSS_INLINE int detSign(const Vec3<W>& u, W e, const PoleT& a, const PoleT& b, const PoleT& q) {
+  // its error bound e: |u.q - det/|a x b|| <= e |q|_1 (filtered policy: e already holds the
+  // factor M >= |q|_1). Below it the exact predicate decides, or the filtered search gives up.
+  DSS_INLINE int detSign(const Vec3<W>& u, W e, const PoleT& a, const PoleT& b, const PoleT& q) {
     const W d = u.dot(q.hi);
-    if constexpr (!Exact) {
+    if constexpr (!Filter) {
+      return (d > W(0)) - (d < W(0));
+    } else if constexpr (kOnlyFilter) {
+      unsure_ |= !(std::abs(d) > e);
       return (d > W(0)) - (d < W(0));
     } else {
       if (std::abs(d) > e * q.norm) return (d > W(0)) - (d < W(0));
@@ -151,26 +177,27 @@ class SphericalPolygon {
   // Unit vertex a x b and the bound of detSign. The error of fl(a x b) is at most about
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
-  // covers all of it with margin.
+  // covers all of it with margin. The filtered policy bounds |a|_1 |b|_1 |q|_1 by M^3.
   DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
 
   DSS_INLINE void setUnit(int i, const Vec3<W>& v, const PoleT& a, const PoleT& b) {
     W e = W(0);
     unitVertex(v, a, b, unit_[i], e);
-    if constexpr (Exact) err_[i] = e;
+    if constexpr (Filter) err_[i] = e;
   }
 
-  // The unit vertex u of v = a x b and (exact mode) its filter bound e.
-  static DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u, W& e) {
+  // The unit vertex u of v = a x b and (filtering policies) its filter bound e.
+  DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u, W& e) const {
     (void)a, (void)b, (void)e;
     const W n2 = v.squaredNorm();
     if (n2 > W(0)) {
       const W inv = approxInvSqrt(n2);  // u has norm 1 within 1e-3: see detSign's bound
       u = v * inv;
       if constexpr (Exact) e = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
+      if constexpr (kOnlyFilter) e = (scale2_ * inv + W(8) * kUnit) * scale_;
     } else {
       u.setZero();
-      if constexpr (Exact) e = std::numeric_limits<W>::infinity();  // always exact
+      if constexpr (Filter) e = std::numeric_limits<W>::infinity();  // always exact / unsure
     }
   }
 
@@ -187,7 +214,15 @@ class SphericalPolygon {
     // The floating-point cross product decides "not parallel" when a component clears its
     // rounding bound (3u |p|_1 |q|_1, doubled); otherwise the exact minors do.
     bool parallel;
-    if constexpr (Exact) {
+    if constexpr (kOnlyFilter) {
+      // Not parallel when a component clears the bound 8u M^2; otherwise give up.
+      const W bound = scale2_;
+      parallel = !(std::abs(v.x()) > bound || std::abs(v.y()) > bound || std::abs(v.z()) > bound);
+      if (parallel) {
+        unsure_ = true;
+        return ClipResult::kUnchanged;
+      }
+    } else if constexpr (Exact) {
       const W bound = W(8) * kUnit * p.norm * q.norm;
       parallel = !(std::abs(v.x()) > bound || std::abs(v.y()) > bound || std::abs(v.z()) > bound) &&
                  crossSign(p, q, 0) == 0 && crossSign(p, q, 1) == 0 && crossSign(p, q, 2) == 0;
@@ -208,6 +243,9 @@ class SphericalPolygon {
   DSS_INLINE ClipResult clipLune(const PoleT& q) {
     const PoleT p0 = poles_[0], p1 = poles_[1];
     const int s = detSign(unit_[0], err(0), p0, p1, q);
+    if constexpr (kOnlyFilter) {
+      if (s == 0) return ClipResult::kUnchanged;  // uncertified (unsure_ is set)
+    }
     if (s != 0) {
       // Either triangle keeps the lune's vertex u01 = p0 x p1 (as itself or negated) and
       // gains two on the lines of c1 = p0 x q and c2 = q x p1 (fl(b x a) = -fl(a x b) bit for
@@ -233,7 +271,7 @@ class SphericalPolygon {
       unit_[0] = *v0[cut];
       unit_[1] = *v1[cut];
       unit_[2] = *v2[cut];
-      if constexpr (Exact) {
+      if constexpr (Filter) {
         const W e0[2] = {err_[0], e1}, e2s[2] = {e1, err_[0]};
         err_[0] = e0[cut];
         err_[1] = e2;
@@ -265,14 +303,14 @@ class SphericalPolygon {
   }
 
   DSS_INLINE W err(int i) const {
-    if constexpr (Exact) return err_[i];
+    if constexpr (Filter) return err_[i];
     return W(0);
   }
 
   DSS_INLINE void moveEntry(int to, int from) {
     poles_[to] = poles_[from];
     unit_[to] = unit_[from];
-    if constexpr (Exact) err_[to] = err_[from];
+    if constexpr (Filter) err_[to] = err_[from];
   }
 
   DSS_INLINE ClipResult clipPolygon(const PoleT& q) {
@@ -325,8 +363,10 @@ class SphericalPolygon {
 
   PoleT poles_[kCapacity];
   Vec3<W> unit_[kCapacity];  // unit vertex between poles i and i+1 (zero if degenerate)
-  W err_[Exact ? kCapacity : 1];  // filter bound of detSign (exact mode only)
+  W err_[Filter ? kCapacity : 1];  // filter bound of detSign (filtering policies only)
   int count_ = 0;
+  W scale_ = W(0), scale2_ = W(0);  // filtered policy: M and 8u M^2
+  bool unsure_ = false;  // filtered policy: a sign the filter could not certify
 };
 
 }  // namespace dss::detail

@@ -12,8 +12,10 @@
 // whole search into every shape pair's instantiation makes instrumented builds very slow.
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__) && !defined(DSS_NO_FORCE_INLINE)
 #define DSS_INLINE inline __attribute__((always_inline))
+#define DSS_NOINLINE __attribute__((noinline))
 #else
 #define DSS_INLINE inline
+#define DSS_NOINLINE
 #endif
 
 namespace dss {
