@@ -37,10 +37,10 @@ using ScalarOf = std::decay_t<decltype(std::declval<const S&>().magnitude())>;
 /// The frame origin for a pair: shapes given by world vertices must not be shifted (their
 /// points are the exact inputs), so the shift is zero unless both shapes carry a pose.
 template <class A, class B>
-Vec3d chooseShift(const A& a, const B& b) {
+DSS_INLINE Vec3d chooseShift(const A& a, const B& b) {
   const Vec3d ta = a.anchor().template cast<double>();
   const Vec3d tb = b.anchor().template cast<double>();
-  if (ta.isZero(0) || tb.isZero(0)) return Vec3d::Zero();
+  if (isZero3(ta) || isZero3(tb)) return Vec3d(0.0, 0.0, 0.0);
   return tb;
 }
 
@@ -89,8 +89,16 @@ struct Difference {
 
   /// Support points pa = S_A(n) and pb = S_B(-n); q = pa - pb is a point of A - B.
   DSS_INLINE void support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb) const {
-    pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
-    pb = b.support((-n).template cast<SB>(), shift_b).template cast<W>();
+    if constexpr (std::is_same<SA, W>::value) {
+      pa = a.support(n, shift_a);
+    } else {
+      pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
+    }
+    if constexpr (std::is_same<SB, W>::value) {
+      pb = b.support(neg3(n), shift_b);
+    } else {
+      pb = b.support(neg3(n).template cast<SB>(), shift_b).template cast<W>();
+    }
   }
 
   /// The rounding error of hi = fl(x - y), so that hi + lo = x - y exactly (exact mode; zero
@@ -131,6 +139,54 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
   return exact::dotDiffSign(n.data(), pa.data(), pb.data());
 }
 
+enum class Step { kContinue, kDone, kGiveUp };
+
+/// One test of direction n: q = S_A(n) - S_B(-n) into pole (and pa, pb). kDone when n is
+/// proved separating or the input is invalid (result set), kGiveUp when the filtered search
+/// cannot certify a separating sign, kContinue when q must clip the polygon.
+template <bool Exact, bool Filter, class A, class B, class W, class Diff, class PoleT>
+DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
+                              Vec3<W>& pb, PoleT& pole, Result& result) {
+  (void)a, (void)b;
+  diff.support(n, pa, pb);
+  pole.hi = diff3(pa, pb);
+  const W t = dot3(n, pole.hi);
+  if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
+    result.status = Status::kInvalidInput;
+    return Step::kDone;
+  }
+  if (!(t < W(0))) return Step::kContinue;
+  if constexpr (!Filter) {
+    result.intersect = false;
+    result.separating_direction = n.template cast<double>();
+    return Step::kDone;
+  } else {
+    // |n|_1 bounds |n| without a square root. Certified when even the rounding of both
+    // supports and of the dot cannot lift t to 0 (|q|_1 <= scale, so the error is at most
+    // |n|_1 (err_scale + 4u |q|_1) <= |n|_1 sep_scale).
+    const W nn = std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z());
+    if (t + nn * diff.sep_scale < W(0)) {
+      result.intersect = false;
+      result.separating_direction = n;
+      return Step::kDone;
+    }
+    if constexpr (!Exact) return Step::kGiveUp;
+    if constexpr (A::kExactVertices && B::kExactVertices) {
+      Vec3d xa, xb;
+      if (exactSeparationSign(a, b, n, xa, xb) < 0) {
+        result.intersect = false;
+        result.separating_direction = n;
+        return Step::kDone;
+      }
+      pa = xa, pb = xb;
+      pole.hi = diff3(pa, pb);
+    }
+    // Otherwise the direction is not certifiably separating (a gap within rounding of the
+    // supports): keep searching with q, which is a point of P up to rounding.
+    return Step::kContinue;
+  }
+}
+
 /// One search. Sign policies as in SphericalPolygon: plain (Exact = Filter = false), filtered
 /// (Filter only: returns false, leaving `result` meaningless, as soon as a sign or the final
 /// separation cannot be certified) and exact (both). Returns true with the answer in `result`.
@@ -139,91 +195,53 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
   constexpr bool kOnlyFilter = Filter && !Exact;
   const Difference<A, B, W, Filter> diff(a, b);
   using Poly = SphericalPolygon<W, Exact, Filter>;
-  Poly poly;
-  Pole<W, Exact> pole;
-  Vec3<W> pa, pb;
-  diff.centers(pa, pb);
-  pole.hi = pa - pb;
-  if (!pole.hi.allFinite()) {
+  Vec3<W> start_a, start_b;
+  diff.centers(start_a, start_b);
+  const Vec3<W> c = diff3(start_a, start_b);
+  if (!c.allFinite()) {
     result.status = Status::kInvalidInput;
     return true;
   }
   // fl(a - b) is zero only when a == b: the centres coincide (and the rounding error is zero).
-  if (pole.hi.isZero(0)) return true;
-  // The first pole enters the polygon only if the first step does not separate (the usual
-  // case at low collision density): its rounding error waits until then.
-  const Vec3<W> start_a = pa, start_b = pb;
+  if (isZero3(c)) return true;
+  if (max_iterations < 1) {
+    result.status = Status::kIterationLimit;
+    return true;
+  }
 
+  // The first step, from A's centre towards B's, is taken before anything else is set up:
+  // at low collision density most queries end here.
+  Vec3<W> n = neg3(c);
+  Vec3<W> pa, pb;
+  Pole<W, Exact> pole;
+  result.iterations = 1;
+  const Step first_step = testDirection<Exact, Filter>(a, b, diff, n, pa, pb, pole, result);
+  if (first_step == Step::kDone) return true;
+  if (first_step == Step::kGiveUp) return false;
+
+  // The polygon starts as the hemisphere of the centres' difference; that pole's rounding
+  // error is computed only now.
+  Poly poly;
+  if constexpr (kOnlyFilter) {
+    // Scales whose cubes leave the double range go straight to the exact search.
+    if (!(diff.scale > W(1e-90) && diff.scale < W(1e90))) return false;
+    poly.setScale(diff.scale);
+  }
+  {
+    Pole<W, Exact> first;
+    first.hi = c;
+    if constexpr (Exact) {
+      first.lo = diff.error(start_a, start_b);
+      first.norm = Poly::normBound(first.hi);
+    }
+    poly.init(first);
+  }
   // Hybrid: GJK's simplex (closest point to the origin) steers the first steps.
   Vec3<W> simplex[4];
   int simplex_size = 0;
-  Vec3<W> v = pole.hi;  // GJK's current point of P closest to the origin
-  Vec3<W> n = -pole.hi;  // the first test direction: from A's centre towards B's
+  Vec3<W> v = c;  // GJK's current point of P closest to the origin
 
   for (;;) {
-    if (result.iterations > 0) {
-      if (kHybrid && result.iterations < gjk_steps && !v.isZero(0)) {
-        n = -v;
-      } else {
-        gjk_steps = 0;
-        n = poly.center();
-      }
-    }
-    if (result.iterations >= max_iterations) {
-      result.status = Status::kIterationLimit;
-      return true;
-    }
-    ++result.iterations;
-    diff.support(n, pa, pb);
-    pole.hi = pa - pb;
-    const W t = n.dot(pole.hi);
-    if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
-      result.status = Status::kInvalidInput;
-      return true;
-    }
-    if (t < W(0)) {
-      if constexpr (!Filter) {
-        result.intersect = false;
-        result.separating_direction = n.template cast<double>();
-        return true;
-      } else {
-        const W nn = Poly::normBound(n);  // bounds |n|: no square root needed
-        // Certified when even the rounding of both supports and of the dot cannot lift it.
-        // (|q|_1 <= scale, so err_scale + 4u |q|_1 <= sep_scale.)
-        if (t + nn * diff.sep_scale < W(0)) {
-          result.intersect = false;
-          result.separating_direction = n;
-          return true;
-        }
-        if constexpr (kOnlyFilter) return false;
-        if constexpr (A::kExactVertices && B::kExactVertices) {
-          Vec3d xa, xb;
-          if (exactSeparationSign(a, b, n, xa, xb) < 0) {
-            result.intersect = false;
-            result.separating_direction = n;
-            return true;
-          }
-          pa = xa, pb = xb;
-          pole.hi = pa - pb;
-        }
-        // Otherwise the direction is not certifiably separating (a gap within rounding of
-        // the supports): keep searching with q, which is a point of P up to rounding.
-      }
-    }
-    if (result.iterations == 1) {
-      if constexpr (kOnlyFilter) {
-        // Scales whose cubes leave the double range go straight to the exact search.
-        if (!(diff.scale > W(1e-90) && diff.scale < W(1e90))) return false;
-        poly.setScale(diff.scale);
-      }
-      Pole<W, Exact> first;
-      first.hi = start_a - start_b;
-      if constexpr (Exact) {
-        first.lo = diff.error(start_a, start_b);
-        first.norm = Poly::normBound(first.hi);
-      }
-      poly.init(first);
-    }
     if constexpr (Exact) {
       pole.lo = diff.error(pa, pb);
       pole.norm = Poly::normBound(pole.hi);
@@ -244,6 +262,20 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
       simplex[simplex_size++] = pole.hi;
       v = closestOnSimplex(simplex, simplex_size);
     }
+    if (kHybrid && result.iterations < gjk_steps && !isZero3(v)) {
+      n = neg3(v);
+    } else {
+      gjk_steps = 0;
+      n = poly.center();
+    }
+    if (result.iterations >= max_iterations) {
+      result.status = Status::kIterationLimit;
+      return true;
+    }
+    ++result.iterations;
+    const Step step = testDirection<Exact, Filter>(a, b, diff, n, pa, pb, pole, result);
+    if (step == Step::kDone) return true;
+    if (step == Step::kGiveUp) return false;
   }
 }
 

@@ -16,7 +16,7 @@ struct Padded {
   S shape;
   Scalar radius{0};
 
-  Vec3<Scalar> support(const Vec3<Scalar>& d, const Vec3<Scalar>& shift) const {
+  DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d, const Vec3<Scalar>& shift) const {
     const Scalar n = d.norm();
     Vec3<Scalar> x = shape.support(d, shift);
     if (n > Scalar(0)) x += d * (radius / n);

@@ -39,13 +39,20 @@ struct Posed {
   Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p) : shape(std::move(s)), R_WS(R), p_WS(p) {}
 
   DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
+    const Vec3<Scalar> zero(Scalar(0), Scalar(0), Scalar(0));
     if constexpr (detail::RotationInvariant<S>::value) {
-      return shape.support(d_W, Vec3<Scalar>::Zero()) + (p_WS - shift);
+      return detail::sum3(shape.support(d_W, zero), detail::diff3(p_WS, shift));
     }
-    // Written out: GCC leaves Eigen's fixed-size products out of line here (a call each way).
-    const Vec3<Scalar> d_S(R_WS.col(0).dot(d_W), R_WS.col(1).dot(d_W), R_WS.col(2).dot(d_W));
-    const Vec3<Scalar> x_S = shape.support(d_S, Vec3<Scalar>::Zero());
-    return (R_WS.col(0) * x_S.x() + R_WS.col(1) * x_S.y() + R_WS.col(2) * x_S.z()) + (p_WS - shift);
+    // Written out, scalar by scalar: in large translation units GCC leaves Eigen's fixed-size
+    // products out of line here (a call each way).
+    const Mat3<Scalar>& R = R_WS;
+    const Vec3<Scalar> d_S(R(0, 0) * d_W.x() + R(1, 0) * d_W.y() + R(2, 0) * d_W.z(),
+                           R(0, 1) * d_W.x() + R(1, 1) * d_W.y() + R(2, 1) * d_W.z(),
+                           R(0, 2) * d_W.x() + R(1, 2) * d_W.y() + R(2, 2) * d_W.z());
+    const Vec3<Scalar> x = shape.support(d_S, zero);
+    return Vec3<Scalar>(R(0, 0) * x.x() + R(0, 1) * x.y() + R(0, 2) * x.z() + (p_WS.x() - shift.x()),
+                        R(1, 0) * x.x() + R(1, 1) * x.y() + R(1, 2) * x.z() + (p_WS.y() - shift.y()),
+                        R(2, 0) * x.x() + R(2, 1) * x.y() + R(2, 2) * x.z() + (p_WS.z() - shift.z()));
   }
   Vec3<Scalar> center() const {
     if constexpr (detail::CenteredAtOrigin<S>::value) return p_WS;

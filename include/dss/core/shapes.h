@@ -44,10 +44,11 @@ struct SphereT {
   static constexpr bool kExactVertices = false;
   static constexpr bool kRotationInvariant = true;
   static constexpr bool kCenteredAtOrigin = true;
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    const T n = d.norm();
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n = std::sqrt(d.x() * d.x() + d.y() * d.y() + d.z() * d.z());
     // n == 0: any point will do; the centre keeps the result finite.
-    return (n > T(0) ? Vec3<T>(d * (radius / n)) : Vec3<T>::Zero()) - shift;
+    const T s = n > T(0) ? radius / n : T(0);
+    return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(), d.z() * s - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
@@ -63,10 +64,9 @@ struct BoxT {
   // The corner on d's side: copysign is a bit operation, where a comparison per axis would be
   // a branch that random directions mispredict half the time. (A zero component may pick
   // either face: both maximise d.x.)
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    return Vec3<T>(std::copysign(half.x(), d.x()), std::copysign(half.y(), d.y()),
-                   std::copysign(half.z(), d.z())) -
-           shift;
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    return Vec3<T>(std::copysign(half.x(), d.x()) - shift.x(), std::copysign(half.y(), d.y()) - shift.y(),
+                   std::copysign(half.z(), d.z()) - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
@@ -81,11 +81,12 @@ struct CapsuleT {
   static constexpr bool kExactVertices = false;
   static constexpr bool kCenteredAtOrigin = true;
   static CapsuleT fromLength(T radius, T length) { return CapsuleT{radius, length / T(2)}; }
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    const T n = d.norm();
-    Vec3<T> p = n > T(0) ? Vec3<T>(d * (radius / n)) : Vec3<T>::Zero();
-    p.z() += std::copysign(half_length, d.z());  // the end cap on d's side, without a branch
-    return p - shift;
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n = std::sqrt(d.x() * d.x() + d.y() * d.y() + d.z() * d.z());
+    const T s = n > T(0) ? radius / n : T(0);
+    // The end cap on d's side, without a branch.
+    return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(),
+                   (d.z() * s + std::copysign(half_length, d.z())) - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
@@ -99,7 +100,7 @@ struct CylinderT {
   static constexpr bool kExactVertices = false;
   static constexpr bool kCenteredAtOrigin = true;
   static CylinderT fromLength(T radius, T length) { return CylinderT{radius, length / T(2)}; }
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
     const T s = r > T(0) ? radius / r : T(0);
     return Vec3<T>(d.x() * s, d.y() * s, std::copysign(half_length, d.z())) - shift;
@@ -115,7 +116,7 @@ struct ConeT {
   T half_length{0};  // apex at z = +half_length
   static constexpr bool kExactVertices = false;
   static ConeT fromLength(T radius, T length) { return ConeT{radius, length / T(2)}; }
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
     // apex value d.z*h against the best base-rim value r*radius - d.z*h
     if (d.z() * half_length >= r * radius - d.z() * half_length) {
@@ -135,7 +136,7 @@ struct EllipsoidT {
   Vec3<T> radii = Vec3<T>::Zero();
   static constexpr bool kExactVertices = false;
   static constexpr bool kCenteredAtOrigin = true;
-  Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+  DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
     // x = D^2 d / |D d| with D = diag(radii)
     const Vec3<T> dd = radii.cwiseProduct(d);
     const T n = dd.norm();

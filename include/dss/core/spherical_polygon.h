@@ -92,10 +92,10 @@ class SphericalPolygon {
   /// The next test direction (not normalised): a point inside the polygon -- the sum of its
   /// unit vertices (the paper's renormalised average), or the middle of a lune.
   DSS_INLINE Vec3<W> center() const {
-    if (count_ == 1) return -poles_[0].hi;
+    if (count_ == 1) return neg3(poles_[0].hi);
     if (count_ == 2) return centerLune();
     Vec3<W> s = unit_[0];
-    for (int i = 1; i < count_; ++i) s += unit_[i];
+    for (int i = 1; i < count_; ++i) s = sum3(s, unit_[i]);
     return s;
   }
 
@@ -109,11 +109,11 @@ class SphericalPolygon {
     const Vec3<W>& p0 = poles_[0].hi;
     const Vec3<W>& p1 = poles_[1].hi;
     const Vec3<W>& v = unit_[0];
-    if (p0.dot(p1) < W(0) && !v.isZero(0)) {
-      const Vec3<W> a = p0.cross(v), b = v.cross(p1);
-      return a * approxInvSqrt(a.squaredNorm()) + b * approxInvSqrt(b.squaredNorm());
+    if (dot3(p0, p1) < W(0) && !isZero3(v)) {
+      const Vec3<W> a = cross3(p0, v), b = cross3(v, p1);
+      return sum3(scaled3(a, approxInvSqrt(dot3(a, a))), scaled3(b, approxInvSqrt(dot3(b, b))));
     }
-    return -(p0 * approxInvSqrt(p0.squaredNorm()) + p1 * approxInvSqrt(p1.squaredNorm()));
+    return neg3(sum3(scaled3(p0, approxInvSqrt(dot3(p0, p0))), scaled3(p1, approxInvSqrt(dot3(p1, p1)))));
   }
 
   /// An upper bound of |hi| without a square root.
@@ -132,7 +132,7 @@ class SphericalPolygon {
   // its error bound e: |u.q - det/|a x b|| <= e |q|_1 (filtered policy: e already holds the
   // factor M >= |q|_1). Below it the exact predicate decides, or the filtered search gives up.
   DSS_INLINE int detSign(const Vec3<W>& u, W e, const PoleT& a, const PoleT& b, const PoleT& q) {
-    const W d = u.dot(q.hi);
+    const W d = dot3(u, q.hi);
     if constexpr (!Filter) {
       return (d > W(0)) - (d < W(0));
     } else if constexpr (kOnlyFilter) {
@@ -163,7 +163,7 @@ class SphericalPolygon {
   }
 
   static int dotSign(const PoleT& a, const PoleT& b) {
-    const W d = a.hi.dot(b.hi);
+    const W d = dot3(a.hi, b.hi);
     if constexpr (Exact) {
       if (!(std::abs(d) > W(8) * kUnit * a.norm * b.norm)) {
         const double ah[3] = {a.hi[0], a.hi[1], a.hi[2]}, al[3] = {a.lo[0], a.lo[1], a.lo[2]};
@@ -178,7 +178,7 @@ class SphericalPolygon {
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
   // covers all of it with margin. The filtered policy bounds |a|_1 |b|_1 |q|_1 by M^3.
-  DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, a.hi.cross(b.hi), a, b); }
+  DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, cross3(a.hi, b.hi), a, b); }
 
   DSS_INLINE void setUnit(int i, const Vec3<W>& v, const PoleT& a, const PoleT& b) {
     W e = W(0);
@@ -189,14 +189,14 @@ class SphericalPolygon {
   // The unit vertex u of v = a x b and (filtering policies) its filter bound e.
   DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u, W& e) const {
     (void)a, (void)b, (void)e;
-    const W n2 = v.squaredNorm();
+    const W n2 = dot3(v, v);
     if (n2 > W(0)) {
       const W inv = approxInvSqrt(n2);  // u has norm 1 within 1e-3: see detSign's bound
-      u = v * inv;
+      u = scaled3(v, inv);
       if constexpr (Exact) e = W(8) * kUnit * (a.norm * b.norm * inv + W(1));
       if constexpr (kOnlyFilter) e = (scale2_ * inv + W(8) * kUnit) * scale_;
     } else {
-      u.setZero();
+      u = Vec3<W>(W(0), W(0), W(0));
       if constexpr (Filter) e = std::numeric_limits<W>::infinity();  // always exact / unsure
     }
   }
@@ -210,7 +210,7 @@ class SphericalPolygon {
 
   DSS_INLINE ClipResult clipHemisphere(const PoleT& q) {
     const PoleT& p = poles_[0];
-    const Vec3<W> v = p.hi.cross(q.hi);
+    const Vec3<W> v = cross3(p.hi, q.hi);
     // The floating-point cross product decides "not parallel" when a component clears its
     // rounding bound (3u |p|_1 |q|_1, doubled); otherwise the exact minors do.
     bool parallel;
@@ -256,9 +256,9 @@ class SphericalPolygon {
       // (no branch on s: it is a coin toss for the predictor).
       Vec3<W> c1, c2;
       W e1 = W(0), e2 = W(0);
-      unitVertex(p0.hi.cross(q.hi), p0, q, c1, e1);
-      unitVertex(q.hi.cross(p1.hi), q, p1, c2, e2);
-      const Vec3<W> u01 = unit_[0], n_u01 = -u01, n_c1 = -c1, n_c2 = -c2;
+      unitVertex(cross3(p0.hi, q.hi), p0, q, c1, e1);
+      unitVertex(cross3(q.hi, p1.hi), q, p1, c2, e2);
+      const Vec3<W> u01 = unit_[0], n_u01 = neg3(u01), n_c1 = neg3(c1), n_c2 = neg3(c2);
       // Tables indexed by the side: loads, where a conditional would compile to a branch.
       const int cut = s > 0;
       const PoleT* const second[2] = {&p1, &q};
