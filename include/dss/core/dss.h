@@ -53,15 +53,13 @@ struct Difference {
   const B& b;
   Vec3<SA> shift_a;
   Vec3<SB> shift_b;
-  W err_scale;  // |n| * err_scale bounds the rounding of h_A(n) + h_B(-n) from the supports
   W scale;      // bounds |p|_1 for every point p of A - B in the working frame (exact mode)
-  W sep_scale;  // err_scale + 4u scale: |n|_1 * sep_scale bounds the error of fl(n.q)
+  W sep_scale;  // |n|_1 * sep_scale bounds the rounding of fl(n.q), q = S_A(n) - S_B(-n)
 
   Difference(const A& sa, const B& sb) : a(sa), b(sb) {
     const Vec3d c = chooseShift(sa, sb);
     shift_a = c.template cast<SA>();
     shift_b = c.template cast<SB>();
-    err_scale = W(0);
     scale = W(0);
     sep_scale = W(0);
     if constexpr (!Exact) return;
@@ -77,7 +75,8 @@ struct Difference {
     // 32 u covers them with margin for both shapes (float supports use float's u).
     const double u = std::max(double(std::numeric_limits<SA>::epsilon()),
                               double(std::numeric_limits<SB>::epsilon())) / 2;
-    err_scale = W(32 * u * mag);
+    const W err_scale = W(32 * u * mag);  // |n| err_scale bounds the supports' part
+    // plus the dot product's rounding, 4u |n|_1 |q|_1 <= 4u |n|_1 scale.
     sep_scale = err_scale + W(4) * (std::numeric_limits<W>::epsilon() / 2) * scale;
   }
 
@@ -161,11 +160,9 @@ DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Ve
     result.separating_direction = n.template cast<double>();
     return Step::kDone;
   } else {
-    // |n|_1 bounds |n| without a square root. Certified when even the rounding of both
-    // supports and of the dot cannot lift t to 0 (|q|_1 <= scale, so the error is at most
-    // |n|_1 (err_scale + 4u |q|_1) <= |n|_1 sep_scale).
-    const W nn = std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z());
-    if (t + nn * diff.sep_scale < W(0)) {
+    // Certified when even the rounding of both supports and of the dot cannot lift t to 0.
+    // (|n|_1 bounds |n| without a square root.)
+    if (t + norm1_3(n) * diff.sep_scale < W(0)) {
       result.intersect = false;
       result.separating_direction = n;
       return Step::kDone;
@@ -307,7 +304,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
 template <class A, class B>
 Result runDssExactOnly(const A& a, const B& b, int max_iterations) {
   Result result;
-  searchDss<double, true, true, A, B, false>(a, b, max_iterations, 0, result);
+  searchExact<double, A, B, false>(a, b, max_iterations, 0, result);
   return result;
 }
 

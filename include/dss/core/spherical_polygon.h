@@ -117,7 +117,7 @@ class SphericalPolygon {
   }
 
   /// An upper bound of |hi| without a square root.
-  static DSS_INLINE W normBound(const Vec3<W>& v) { return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z()); }
+  static DSS_INLINE W normBound(const Vec3<W>& v) { return norm1_3(v); }
 
   DSS_INLINE ClipResult clip(const PoleT& q) {
     const ClipResult r = count_ == 1 ? clipHemisphere(q) : count_ == 2 ? clipLune(q) : clipPolygon(q);

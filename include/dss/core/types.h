@@ -3,6 +3,8 @@
 // mode) and in `float` (the paper's arithmetic).
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -57,6 +59,10 @@ DSS_INLINE Vec3<T> diff3(const Vec3<T>& a, const Vec3<T>& b) {
 template <class T>
 DSS_INLINE Vec3<T> neg3(const Vec3<T>& a) {
   return Vec3<T>(-a.x(), -a.y(), -a.z());
+}
+template <class T>
+DSS_INLINE T norm1_3(const Vec3<T>& a) {  // |a|_1, an upper bound of |a| without a square root
+  return std::abs(a.x()) + std::abs(a.y()) + std::abs(a.z());
 }
 template <class T>
 DSS_INLINE bool isZero3(const Vec3<T>& a) {
