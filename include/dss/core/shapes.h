@@ -45,9 +45,18 @@ struct SphereT {
   static constexpr bool kRotationInvariant = true;
   static constexpr bool kCenteredAtOrigin = true;
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    const T n = std::sqrt(d.x() * d.x() + d.y() * d.y() + d.z() * d.z());
-    // n == 0: any point will do; the centre keeps the result finite.
-    const T s = n > T(0) ? radius / n : T(0);
+    const T n2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+    // radius / |d|, as sqrt(n2) * (radius / n2) where nothing can overflow or lose precision
+    // (the usual case): the square root and the division then run side by side.
+    constexpr T lo = T(1e-30), hi = T(1e30);
+    T s;
+    if (n2 > lo && n2 < hi && radius > lo && radius < hi) {
+      s = std::sqrt(n2) * (radius / n2);
+    } else {
+      const T n = std::sqrt(n2);
+      // n == 0: any point will do; the centre keeps the result finite.
+      s = n > T(0) ? radius / n : T(0);
+    }
     return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(), d.z() * s - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }

@@ -22,12 +22,13 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "dss/core/exact_predicates.h"
 #include "dss/core/types.h"
 
 #if (defined(__SSE__) || defined(_M_X64)) && !defined(DSS_NO_RSQRT)
-#include <xmmintrin.h>
+#include <emmintrin.h>
 #define DSS_HAVE_RSQRT 1
 #endif
 
@@ -57,16 +58,30 @@ struct Pole<W, false> {
 template <class W>
 DSS_INLINE W approxInvSqrt(W x) {
 #ifdef DSS_HAVE_RSQRT
-  if (x > W(1e-30) && x < W(1e30))
-    return W(_mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(static_cast<float>(x)))));
+  if (x > W(1e-30) && x < W(1e30)) {
+    if constexpr (std::is_same<W, double>::value) {
+      // Packed conversions write whole registers: the scalar forms merge into a register's
+      // old contents (a false dependency) and GCC routes _mm_set_ss through a general
+      // register, both on the search's critical path.
+      return _mm_cvtsd_f64(_mm_cvtps_pd(_mm_rsqrt_ps(_mm_cvtpd_ps(_mm_set1_pd(x)))));
+    } else {
+      return W(_mm_cvtss_f32(_mm_rsqrt_ps(_mm_set1_ps(static_cast<float>(x)))));
+    }
+  }
 #endif
   return W(1) / std::sqrt(x);
 }
 
 enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow, kUnsure };
 
+// The polygon is aligned to a cache line and its poles start 48 bytes into one. Where they
+// start changed the plain double search by up to 12 % on our machines (AMD Zen 2: tetrahedra
+// 137 against 155 ns per pair, frustum against spheres 148 against 170), and without the
+// alignment that depended on where the stack happened to land (the same binary was fast or
+// slow with the environment 16 bytes longer or shorter). Offsets 0 to 56 in steps of 8 and
+// poles padded to 32 bytes were all measured; only 48 was fast.
 template <class W, bool Exact, bool Filter = Exact>
-class SphericalPolygon {
+class alignas(64) SphericalPolygon {
   static_assert(Filter || !Exact, "the exact policy filters its signs");
   static constexpr bool kOnlyFilter = Filter && !Exact;
 
@@ -361,6 +376,7 @@ class SphericalPolygon {
     return ClipResult::kChanged;
   }
 
+  char lead_[48];  // see the top of the class
   PoleT poles_[kCapacity];
   Vec3<W> unit_[kCapacity];  // unit vertex between poles i and i+1 (zero if degenerate)
   W err_[Filter ? kCapacity : 1];  // filter bound of detSign (filtering policies only)
