@@ -39,20 +39,6 @@ inline void twoProd(double a, double b, double& x, double& y) {
   y = std::fma(a, b, -x);
 }
 
-// h = e + b (Shewchuk's GROW-EXPANSION with zero elimination).
-void grow(const Expansion& e, double b, Expansion& h) {
-  double q = b;
-  h.n = 0;
-  for (int i = 0; i < e.n; ++i) {
-    double qn, hh;
-    twoSum(q, e.c[i], qn, hh);
-    q = qn;
-    if (hh != 0.0) h.c[h.n++] = hh;
-  }
-  if (q != 0.0 || h.n == 0) h.c[h.n++] = q;
-}
-
-// h = e + f, by growing e with each component of f.
 // x + y = a + b exactly, given |a| >= |b| (or a == 0).
 inline void fastTwoSum(double a, double b, double& x, double& y) {
   x = a + b;
