@@ -134,6 +134,53 @@ BOOST_AUTO_TEST_CASE(sphere_pairs_against_distance) {
   BOOST_TEST(hits < n * 0.7);
 }
 
+// The plain modes decide a posed ball B by h_A(n) + r |n| with poles scaled by |n| (dss.h,
+// testBallDirection). Against the exact mode on hull-ball and ball-ball pairs that are not near
+// contact (the exact answer is the same with the radius 1e-4 larger and smaller), double and
+// float give the same answers, with the ball as B (that path) and as A (the general one).
+BOOST_AUTO_TEST_CASE(ball_test_of_the_plain_modes) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int n = 0, hits = 0, wrong = 0, wrong_float = 0;
+  Options exact, dbl, flt;
+  dbl.mode = Mode::kDouble;
+  flt.mode = Mode::kFloat;
+  for (int i = 0; i < 4000; ++i) {
+    std::vector<Vec3d> pts;
+    const Vec3d c0(u(rng), u(rng), u(rng));
+    const int m = 1 + i % 8;  // points, segments, triangles and solids
+    for (int k = 0; k < m; ++k) pts.push_back(c0 + 0.5 * Vec3d(u(rng), u(rng), u(rng)));
+    const ConvexHull hull(pts);
+    const double r = 0.05 + 0.4 * std::abs(u(rng));
+    const Vec3d cb = c0 + 0.4 * Vec3d(u(rng), u(rng), u(rng));
+    const auto ball = posed(Sphere{r}, Mat3d::Identity().eval(), cb);
+    const auto ball_small = posed(Sphere{r * (1 - 1e-4)}, Mat3d::Identity().eval(), cb);
+    const auto ball_large = posed(Sphere{r * (1 + 1e-4)}, Mat3d::Identity().eval(), cb);
+    const auto other = posed(Sphere{0.3 * std::abs(u(rng))}, Mat3d::Identity().eval(), c0);
+    for (int kind = 0; kind < 2; ++kind) {
+      auto check = [&](const auto& a) {
+        const bool truth = intersect(a, ball, exact).intersect;
+        if (intersect(a, ball_small, exact).intersect != truth || intersect(a, ball_large, exact).intersect != truth)
+          return;  // near contact: the plain modes may differ
+        ++n;
+        hits += truth;
+        wrong += intersect(a, ball, dbl).intersect != truth;
+        wrong += intersect(ball, a, dbl).intersect != truth;
+        wrong_float += intersect(a, ball, flt).intersect != truth;
+        wrong_float += intersect(ball, a, flt).intersect != truth;
+      };
+      if (kind == 0) check(hull); else check(other);
+    }
+  }
+  BOOST_TEST_MESSAGE("ball pairs: " << n << ", intersecting " << hits << ", double wrong " << wrong
+                                    << ", float wrong " << wrong_float);
+  BOOST_TEST(n > 7000);
+  BOOST_TEST(hits > n * 0.3);
+  BOOST_TEST(hits < n * 0.7);
+  BOOST_TEST(wrong == 0);
+  BOOST_TEST(wrong_float == 0);
+}
+
 // After any sequence of clips, every cached vertex lies on the boundary of the region and
 // inside every other hemisphere, and the centre lies strictly inside.
 BOOST_AUTO_TEST_CASE(spherical_polygon_invariants) {

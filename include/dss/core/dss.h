@@ -86,6 +86,14 @@ struct Difference {
     cb = (b.center() - shift_b).template cast<W>();
   }
 
+  DSS_INLINE void supportA(const Vec3<W>& n, Vec3<W>& pa) const {
+    if constexpr (std::is_same<SA, W>::value) {
+      pa = a.support(n, shift_a);
+    } else {
+      pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
+    }
+  }
+
   /// Support points pa = S_A(n) and pb = S_B(-n); q = pa - pb is a point of A - B.
   DSS_INLINE void support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb) const {
     if constexpr (std::is_same<SA, W>::value) {
@@ -140,13 +148,54 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
 
 enum class Step { kContinue, kDone, kGiveUp };
 
+/// A posed ball (a sphere with a pose): its support point c + r d/|d| needs a square root and a
+/// division on the search's critical path, which the plain search avoids (see testBallDirection).
+template <class S>
+struct IsPosedBall : std::false_type {};
+template <class T>
+struct IsPosedBall<Posed<SphereT<T>>> : std::true_type {};
+
+/// The plain search's test of direction n when B is a ball of centre c and radius r (in the
+/// working frame): h_A(n) + h_B(-n) = n.(S_A(n) - c) + r |n|, one square root and no division,
+/// and the pole |n| (S_A(n) - S_B(-n)) = |n| (S_A(n) - c) + r n, a positive multiple of the
+/// support point (the polygon only uses poles' directions). Returns false (nothing done) when
+/// |n|^2 is outside [1e-30, 1e30], where the general test takes over.
+template <class A, class B, class W, class Diff, class PoleT>
+DSS_INLINE bool testBallDirection(const B& ball, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
+                                  PoleT& pole, Step& step, Result& result) {
+  const W n2 = dot3(n, n);
+  if (!(n2 > W(1e-30) && n2 < W(1e30))) return false;
+  const W len = std::sqrt(n2);
+  diff.supportA(n, pa);
+  const Vec3<W> core = diff3(pa, diff3(ball.p_WS, diff.shift_b));
+  const W t = dot3(n, core) + ball.shape.radius * len;
+  if (!std::isfinite(t)) {
+    result.status = Status::kInvalidInput;
+    step = Step::kDone;
+    return true;
+  }
+  if (t < W(0)) {
+    result.intersect = false;
+    result.separating_direction = n.template cast<double>();
+    step = Step::kDone;
+    return true;
+  }
+  pole.hi = sum3(scaled3(core, len), scaled3(n, ball.shape.radius));
+  step = Step::kContinue;
+  return true;
+}
+
 /// One test of direction n: q = S_A(n) - S_B(-n) into pole (and pa, pb). kDone when n is
 /// proved separating or the input is invalid (result set), kGiveUp when the filtered search
 /// cannot certify a separating sign, kContinue when q must clip the polygon.
-template <bool Exact, bool Filter, class A, class B, class W, class Diff, class PoleT>
+template <bool Exact, bool Filter, bool kHybrid, class A, class B, class W, class Diff, class PoleT>
 DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
                               Vec3<W>& pb, PoleT& pole, Result& result) {
   (void)a, (void)b;
+  if constexpr (!Filter && !kHybrid && IsPosedBall<B>::value && std::is_same<ScalarOf<B>, W>::value) {
+    Step step;
+    if (testBallDirection<A, B>(b, diff, n, pa, pole, step, result)) return step;
+  }
   diff.support(n, pa, pb);
   pole.hi = diff3(pa, pb);
   const W t = dot3(n, pole.hi);
@@ -212,7 +261,7 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
   Vec3<W> pa, pb;
   Pole<W, Exact> pole;
   result.iterations = 1;
-  const Step first_step = testDirection<Exact, Filter>(a, b, diff, n, pa, pb, pole, result);
+  const Step first_step = testDirection<Exact, Filter, kHybrid>(a, b, diff, n, pa, pb, pole, result);
   if (first_step == Step::kDone) return true;
   if (first_step == Step::kGiveUp) return false;
 
@@ -270,7 +319,7 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
       return true;
     }
     ++result.iterations;
-    const Step step = testDirection<Exact, Filter>(a, b, diff, n, pa, pb, pole, result);
+    const Step step = testDirection<Exact, Filter, kHybrid>(a, b, diff, n, pa, pb, pole, result);
     if (step == Step::kDone) return true;
     if (step == Step::kGiveUp) return false;
   }
