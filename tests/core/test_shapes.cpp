@@ -134,10 +134,10 @@ BOOST_AUTO_TEST_CASE(sphere_pairs_against_distance) {
   BOOST_TEST(hits < n * 0.7);
 }
 
-// The plain modes decide a posed ball B by h_A(n) + r |n| with poles scaled by |n| (dss.h,
+// The double mode decides a posed ball B by h_A(n) + r |n| with poles scaled by |n| (dss.h,
 // testBallDirection). Against the exact mode on hull-ball and ball-ball pairs that are not near
-// contact (the exact answer is the same with the radius 1e-4 larger and smaller), double and
-// float give the same answers, with the ball as B (that path) and as A (the general one).
+// contact (the exact answer is the same with the radius 1e-4 larger and smaller), double gives
+// the same answers with the ball as B (that path) and as A (the general one); so does float.
 BOOST_AUTO_TEST_CASE(ball_test_of_the_plain_modes) {
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(-1, 1);
