@@ -86,6 +86,7 @@ struct Difference {
     cb = (b.center() - shift_b).template cast<W>();
   }
 
+  /// Support point pa = S_A(n).
   DSS_INLINE void supportA(const Vec3<W>& n, Vec3<W>& pa) const {
     if constexpr (std::is_same<SA, W>::value) {
       pa = a.support(n, shift_a);
@@ -96,11 +97,7 @@ struct Difference {
 
   /// Support points pa = S_A(n) and pb = S_B(-n); q = pa - pb is a point of A - B.
   DSS_INLINE void support(const Vec3<W>& n, Vec3<W>& pa, Vec3<W>& pb) const {
-    if constexpr (std::is_same<SA, W>::value) {
-      pa = a.support(n, shift_a);
-    } else {
-      pa = a.support(n.template cast<SA>(), shift_a).template cast<W>();
-    }
+    supportA(n, pa);
     if constexpr (std::is_same<SB, W>::value) {
       pb = b.support(neg3(n), shift_b);
     } else {
@@ -160,7 +157,7 @@ struct IsPosedBall<Posed<SphereT<T>>> : std::true_type {};
 /// and the pole |n| (S_A(n) - S_B(-n)) = |n| (S_A(n) - c) + r n, a positive multiple of the
 /// support point (the polygon only uses poles' directions). Returns false (nothing done) when
 /// |n|^2 is outside [1e-30, 1e30], where the general test takes over.
-template <class A, class B, class W, class Diff, class PoleT>
+template <class B, class W, class Diff, class PoleT>
 DSS_INLINE bool testBallDirection(const B& ball, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
                                   PoleT& pole, Step& step, Result& result) {
   const W n2 = dot3(n, n);
@@ -197,7 +194,7 @@ DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Ve
   if constexpr (!Filter && !kHybrid && IsPosedBall<B>::value && std::is_same<W, double>::value &&
                 std::is_same<ScalarOf<B>, W>::value) {
     Step step;
-    if (testBallDirection<A, B>(b, diff, n, pa, pole, step, result)) return step;
+    if (testBallDirection<B>(b, diff, n, pa, pole, step, result)) return step;
   }
   diff.support(n, pa, pb);
   pole.hi = diff3(pa, pb);
