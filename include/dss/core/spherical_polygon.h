@@ -106,7 +106,7 @@ class alignas(64) SphericalPolygon {
   const PoleT& pole(int i) const { return poles_[i]; }
 
   /// The next test direction (not normalised): a point inside the polygon -- the sum of its
-  /// unit vertices (the paper's renormalised average), or for a lune GJK's direction.
+  /// unit vertices (the paper's renormalised average), or for a lune see directionLune.
   DSS_INLINE Vec3<W> center() const {
     if (count_ == 1) return neg3(poles_[0].hi);
     if (count_ == 2) return directionLune();
@@ -115,21 +115,24 @@ class alignas(64) SphericalPolygon {
     return s;
   }
 
-  /// A direction inside the lune {w : w.p0 < 0, w.p1 < 0}: -v, v the point of the segment
-  /// [p0, p1] closest to the origin (the direction GJK takes from the same two points). Every
-  /// point x of the segment has v.x >= |v|^2, so -v lies in the lune unless v = 0, which a lune
-  /// (two poles not opposite) excludes. Against centerLune (the lune's middle) the mean
-  /// iterations of the `dss_bench narrowphase` workloads moved by at most 2 % either way and
-  /// the time per query fell 3-11 % at densities above 10 %: no square roots, and no branch on
-  /// the lune's width. Rounding can put -v just outside a
-  /// very thin lune; the floating-point check below then hands over to centerLune.
+  /// A direction inside the lune {w : w.p0 < 0, w.p1 < 0}, next to the middle of its boundary
+  /// arc on p1's side (p1 is the newer pole when the lune comes from a hemisphere): b =
+  /// (p0.p1) p1 - (p1.p1) p0 is that arc's midpoint (b.p1 = 0, b.p0 = -|p0 x p1|^2, |b| =
+  /// |p1|^2 |p0| sin(theta), theta the angle between the poles), and -push p1 with push =
+  /// |p0|_1 |p1|_1 / 64 moves it into the lune by an angle whose tangent is 1 to 3 times
+  /// 1 / (64 sin(theta)) (1-norms: no square root, no division). The direction depends only on
+  /// the poles' directions, not their lengths. When the hemisphere {w.c < 0} is
+  /// cut by q, this is the previous direction -c turned just past the new plane {w.q = 0}: against
+  /// GJK's direction (minus the point of [p0, p1] closest to the origin) it cut the mean
+  /// iterations of `dss_bench narrowphase` by 5-17 % at densities of 4-70 % on all five
+  /// workloads, and kept them at densities above 90 %. Pushing further (1/16) took more
+  /// iterations. In a lune thinner than the push (poles within about 12 degrees of opposite) it
+  /// leaves the lune; the floating-point check then hands over to centerLune.
   DSS_INLINE Vec3<W> directionLune() const {
     const Vec3<W>& p0 = poles_[0].hi;
     const Vec3<W>& p1 = poles_[1].hi;
-    const Vec3<W> d = diff3(p1, p0);
-    // t = -p0.d / d.d clamped to [0, 1] (a NaN from an underflowing d.d fails the check).
-    const W t = std::min(std::max(-dot3(p0, d) / dot3(d, d), W(0)), W(1));
-    const Vec3<W> n = neg3(sum3(p0, scaled3(d, t)));
+    const W push = norm1_3(p0) * norm1_3(p1) * W(1.0 / 64);
+    const Vec3<W> n = diff3(scaled3(p1, dot3(p0, p1) - push), scaled3(p0, dot3(p1, p1)));
     if (dot3(n, p0) < W(0) && dot3(n, p1) < W(0)) return n;
     return centerLune();
   }
