@@ -64,20 +64,19 @@ struct Difference {
     sep_scale = W(0);
     if constexpr (!Exact) return;
     // 1-norms bound the distances without a square root on the query's critical path.
-    const double mag = double(sa.magnitude()) + double(sb.magnitude()) +
-                       (sa.anchor().template cast<double>() - c).template lpNorm<1>() +
-                       (sb.anchor().template cast<double>() - c).template lpNorm<1>();
+    const Vec3d da = sa.anchor().template cast<double>() - c, db = sb.anchor().template cast<double>() - c;
+    const double mag = (double(sa.magnitude()) + double(sb.magnitude())) + (norm1_3(da) + norm1_3(db));
     // |x - c|_1 <= sqrt(3) |x - anchor| + |anchor - c|_1 for x in a shape; 2 leaves room for
     // the rounding of the support points.
     scale = W(2 * mag);
     // Each support value h(n) = n.x is off by a few ulps of |n| (|x_S| + |t|): rotations of
     // the direction and of the point, normalisations, the translation and the dot product.
-    // 32 u covers them with margin for both shapes (float supports use float's u).
-    const double u = std::max(double(std::numeric_limits<SA>::epsilon()),
-                              double(std::numeric_limits<SB>::epsilon())) / 2;
-    const W err_scale = W(32 * u * mag);  // |n| err_scale bounds the supports' part
-    // plus the dot product's rounding, 4u |n|_1 |q|_1 <= 4u |n|_1 scale.
-    sep_scale = err_scale + W(4) * (std::numeric_limits<W>::epsilon() / 2) * scale;
+    // 32 u covers them with margin for both shapes (float supports use float's u); the dot
+    // product's rounding adds 4u |n|_1 |q|_1 <= 4u |n|_1 scale = 8u |n|_1 mag.
+    constexpr double u = std::max(double(std::numeric_limits<SA>::epsilon()),
+                                  double(std::numeric_limits<SB>::epsilon())) / 2;
+    constexpr double kSep = 32 * u + 8 * (double(std::numeric_limits<W>::epsilon()) / 2);
+    sep_scale = W(kSep * mag);
   }
 
   /// The centres of A and B (points of the shapes), in the working frame.
