@@ -126,8 +126,9 @@ class alignas(64) SphericalPolygon {
   /// GJK's direction (minus the point of [p0, p1] closest to the origin) it cut the mean
   /// iterations of `dss_bench narrowphase` by 5-17 % at densities of 4-70 % on all five
   /// workloads, and kept them at densities above 90 %. Pushing further (1/16) took more
-  /// iterations. In a lune thinner than the push (poles within about 12 degrees of opposite) it
-  /// leaves the lune; the floating-point check then hands over to centerLune.
+  /// iterations. In a lune thinner than the push (sin^2(theta) below 1/64 to 3/64 of |cos(theta)|:
+  /// poles within 7 to 12 degrees of opposite) it leaves the lune; the floating-point check then
+  /// hands over to centerLune.
   DSS_INLINE Vec3<W> directionLune() const {
     const Vec3<W>& p0 = poles_[0].hi;
     const Vec3<W>& p1 = poles_[1].hi;
