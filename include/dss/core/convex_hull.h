@@ -70,7 +70,10 @@ DSS_INLINE int scanSoa(const T* x, int stride, int n, T dx, T dy, T dz) {
 
 #if defined(__SSE2__) || defined(_M_X64)
 // Two points per step, each lane keeping its own best value and index; the lanes then agree
-// on the first index of the largest value, as the linear scan would.
+// on the first index of the largest value, as the linear scan would. max(v, best) is exactly
+// "v > best ? v : best" (MAXPD returns its second operand for equal values, for zeros of either
+// sign and for a NaN), one instruction where the blend took three: 16-vertex polytopes 7-11 %
+// faster in `double` (interleaved harness), boxes (no hull) unchanged.
 DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy, double dz) {
   (void)n;
   const double* y = x + stride;
@@ -86,7 +89,7 @@ DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy,
     const __m128d v = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), DX), _mm_mul_pd(_mm_loadu_pd(y + i), DY)),
                                  _mm_mul_pd(_mm_loadu_pd(z + i), DZ));
     const __m128d gt = _mm_cmpgt_pd(v, best);
-    best = _mm_or_pd(_mm_and_pd(gt, v), _mm_andnot_pd(gt, best));
+    best = _mm_max_pd(v, best);
     best_index = _mm_or_pd(_mm_and_pd(gt, index), _mm_andnot_pd(gt, best_index));
   }
   // Lane 1 wins when larger, or equal with a smaller index: decided without a branch.
@@ -111,7 +114,7 @@ DSS_INLINE int scanSoa(const float* x, int stride, int n, float dx, float dy, fl
     const __m128 v = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + i), DX), _mm_mul_ps(_mm_loadu_ps(y + i), DY)),
                                 _mm_mul_ps(_mm_loadu_ps(z + i), DZ));
     const __m128 gt = _mm_cmpgt_ps(v, best);
-    best = _mm_or_ps(_mm_and_ps(gt, v), _mm_andnot_ps(gt, best));
+    best = _mm_max_ps(v, best);
     best_index = _mm_or_ps(_mm_and_ps(gt, index), _mm_andnot_ps(gt, best_index));
   }
   // Pairwise reduction of the four lanes, without a branch: the larger value wins, and of
