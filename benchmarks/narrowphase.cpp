@@ -560,7 +560,7 @@ void printRows(const std::vector<Row>& rows) {
   }
 }
 
-// Bar of issue 2: ratios of pairs/s taken in the same run.
+// Speed targets: ratios of pairs/s taken in the same run.
 struct Ratio {
   std::string workload;
   double sigma, density;
@@ -603,7 +603,7 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
                      e.wrong == 0});
     }
   }
-  // Absolute rates of a careful plain implementation (issue 2): tetrahedra at 60 %,
+  // Absolute rates of a careful plain implementation: tetrahedra at 60 %,
   // 16-vertex polytopes at 100 %, boxes at 98 %; the spread whose density is nearest.
   auto absolute = [&](const std::string& workload, double density, double mpairs) {
     const Row* best = nullptr;
@@ -624,7 +624,7 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
 }
 
 void printRatios(const std::vector<Ratio>& ratios) {
-  std::printf("\nBar of issue 2 (ratios of medians in this run; >= target unless the target is a cost):\n");
+  std::printf("\nTargets (ratios of medians in this run; >= target unless the target is a cost):\n");
   std::printf("%-16s %6s %4s %7s  %-38s %9s %7s  %s\n", "workload", "sigma", "verts", "density", "measure", "value",
               "target", "");
   int met = 0;

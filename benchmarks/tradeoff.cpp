@@ -1,5 +1,5 @@
 // `dss_bench tradeoff`: what each collision-checking setting costs in time, missed collisions
-// and false alarms, on real robots in real MotionBenchMaker scenes (issue 5, items 1-2).
+// and false alarms, on real robots in real MotionBenchMaker scenes.
 //
 // Per robot (Panda, UR5 + Robotiq gripper, KUKA iiwa 14) and per scene, the same seeded random
 // states (uniform in the joint limits of the reference model) and the same random short motions
@@ -42,10 +42,11 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "dss/core/padded.h"
-#include "dss/core/posed.h"
-#include "dss/planning/continuous_motion_validator.h"
-#include "dss/planning/fcl_validity_checker.h"
+#include "dss/core/any_shape_query.h"
+#include "dss/checker/continuous_motion.h"
+#include "dss/checker/fcl_checker.h"
+#include "dss/checker/motion_bounds.h"
+#include "dss/checker/sweep.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
@@ -294,8 +295,6 @@ struct SceneCtx {
   std::vector<char> state_truth;            // 1: the truth collides
   std::vector<Motion> motions;
   std::vector<char> motion_truth;
-  std::shared_ptr<ModelValidityChecker> truth_mesh;
-  std::shared_ptr<DssValidityChecker> truth_hull;
 };
 
 std::string problemKey(Geo g, double margin) {
@@ -341,45 +340,20 @@ VariantProblem& problemFor(SceneCtx& ctx, const Loaded& L, Geo g, double margin,
 // ---------------------------------------------------------------------------------------------
 // Motion truth: the reference geometry sampled with a bound on the displacement of every point.
 
-struct ChainTerm {
-  int active;
-  double multiplier;
-  double radius;  // < 0: prismatic (displacement = |dq|)
-};
-
-/// For each moving slot: the joints above it with a bound on the distance of the slot's geometry
-/// from the joint's origin (the same bound as ContinuousMotionValidator).
+/// For each moving slot: the joints above it with the bound on the distance of the slot's
+/// geometry from each joint's origin (motion_bounds.h, as the continuous motion check).
 std::vector<std::vector<ChainTerm>> chainBounds(const CollisionModel& m) {
-  const RobotModel& r = m.robot();
   std::vector<std::vector<ChainTerm>> chains(m.slots().size());
   for (std::size_t k = 0; k < m.slots().size(); ++k) {
     const auto& s = m.slots()[k];
-    if (!s.moves) continue;
-    double below = s.center_L.norm() + s.radius;
-    for (int l = s.link; r.links[l].parent_joint >= 0; l = r.links[l].parent_link) {
-      const RobotJoint& j = r.joints[r.links[l].parent_joint];
-      int active = j.active_index;
-      double mult = 1.0;
-      if (active < 0 && j.mimic_active >= 0) active = j.mimic_active, mult = j.mimic_multiplier;
-      double travel = 0.0;
-      if (j.type == JointType::kPrismatic) {
-        const RobotJoint& src = active >= 0 ? r.joints[r.active_joints[active]] : j;
-        travel = std::abs(mult) * std::max({std::abs(src.limits.lower), std::abs(src.limits.upper),
-                                            active >= 0 ? std::abs(m.held()[active]) : 0.0}) +
-                 std::abs(j.mimic_offset);
-      }
-      if (active >= 0 && j.type != JointType::kFixed)
-        chains[k].push_back({active, mult, j.type == JointType::kPrismatic ? -1.0 : below});
-      below += travel + j.X_PJ.translation().norm();
-    }
+    if (s.moves) chains[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
   }
   return chains;
 }
 
 struct Truth {
   const VariantProblem* vp = nullptr;
-  std::shared_ptr<ModelValidityChecker> mesh;
-  std::shared_ptr<DssValidityChecker> hull;
+  std::shared_ptr<const FclChecker> mesh;
   std::vector<std::vector<ChainTerm>> chains;
   double delta = 0.001;
   mutable std::uint64_t samples = 0;
@@ -391,7 +365,7 @@ struct Truth {
     thread_local std::vector<Eigen::Isometry3d> X;
     X.resize(m.robot().links.size());
     m.kinematics().computeLinkPoses(q, X.data());
-    const auto* fm = static_cast<const FclValidityChecker*>(mesh.get());
+    const FclChecker* fm = mesh.get();
     const Options exact;
     const auto& el = m.elements();
     fcl::CollisionRequestd req;
@@ -401,8 +375,11 @@ struct Truth {
       fcl::collide(a, fcl::Transform3d(XA.matrix()), b, fcl::Transform3d(XB.matrix()), req, res);
       return res.isCollision();
     };
-    return m.anyCollision(
-        X.data(), 0.0, 0.0,
+    // No self-pair tables: a table certifies the hulls, not the meshes inside them.
+    thread_local std::vector<unsigned char> no_tables;
+    no_tables.assign(m.selfTables().size(), 0);
+    return sweep<SweepPoses::kOwnLinks>(
+        m, X.data(), no_tables.data(), SweepOptions{},
         [&](int e, const Eigen::Isometry3d& X_WS, int o) {
           const auto& ob = m.scene().obstacles[o];
           if (!intersect(el[e].source->shape, X_WS, ob.shape, ob.X_WO, exact).intersect) return false;
@@ -417,14 +394,7 @@ struct Truth {
   /// Largest displacement of any robot point along q0 -> q1 (bound).
   double sweepBound(const double* q0, const double* q1) const {
     double L = 0.0;
-    for (const auto& c : chains) {
-      double len = 0.0;
-      for (const auto& t : c) {
-        const double dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
-        len += t.radius < 0 ? dq : dq * t.radius;
-      }
-      L = std::max(L, len);
-    }
+    for (const auto& c : chains) L = std::max(L, motionBound(c, q0, q1).length);
     return L;
   }
 
@@ -456,15 +426,7 @@ struct Truth {
 double certifiedGap(const AnyShape& a, const Eigen::Isometry3d& XA, const AnyShape& b, const Eigen::Isometry3d& XB) {
   Options opt;
   opt.max_iterations = 1000;
-  auto meets = [&](double r) {
-    return std::visit(
-        [&](const auto& sa, const auto& sb) {
-          const Eigen::Matrix3d RA = XA.linear(), RB = XB.linear();
-          const Eigen::Vector3d pA = XA.translation(), pB = XB.translation();
-          return intersect(padded(posed(sa, RA, pA), r), posed(sb, RB, pB), opt).intersect;
-        },
-        a, b);
-  };
+  auto meets = [&](double r) { return intersect(a, XA, b, XB, opt, r).intersect; };
   if (meets(0.0)) return 0.0;
   double lo = 0.0, hi = 1e-6;
   while (!meets(hi) && hi < 10.0) lo = hi, hi *= 4.0;
@@ -539,7 +501,7 @@ struct Diagnosis {
   std::string text;
 };
 
-Diagnosis diagnose(const VariantProblem& vp, const FclValidityChecker& fcl, const double* q) {
+Diagnosis diagnose(const VariantProblem& vp, const FclChecker& fcl, const double* q) {
   const CollisionModel& m = *vp.p.model;
   const RobotModel& r = m.robot();
   std::vector<Eigen::Isometry3d> X(r.links.size(), Eigen::Isometry3d::Identity());
@@ -594,27 +556,21 @@ Diagnosis diagnose(const VariantProblem& vp, const FclValidityChecker& fcl, cons
 
 struct Instance {
   const VariantProblem* vp = nullptr;
-  std::shared_ptr<ModelValidityChecker> checker;
-  std::shared_ptr<ContinuousMotionValidator> cmv;
-  ob::State* s0 = nullptr;
-  ob::State* s1 = nullptr;
+  std::shared_ptr<const StateChecker> checker;
+  std::shared_ptr<const ContinuousMotionChecker> cmv;
   std::vector<double> qs;  // states, pre-mapped (n x nq)
   std::vector<double> m0, m1;  // motion endpoints, pre-mapped
   std::vector<long> segs;      // discrete segments per motion
-  ~Instance() {
-    if (s0) vp->p.si->freeState(s0);
-    if (s1) vp->p.si->freeState(s1);
-  }
 };
 
-std::shared_ptr<ModelValidityChecker> makeSettingChecker(const VariantProblem& vp, const Setting& s) {
+std::shared_ptr<const StateChecker> makeSettingChecker(const VariantProblem& vp, const Setting& s) {
   CheckerConfig c;
   c.checker = s.geo == Geo::kMesh ? "fcl-mesh" : s.geo == Geo::kFclHull ? "fcl-hull" : "dss";
   c.scene_padding = s.pad;
   c.self_padding = 0.0;
   c.dss_options.mode = s.mode;
   c.dss_options.max_iterations = s.cap;
-  return makeChecker(vp.p, c);
+  return makeStateChecker(vp.p.model, c);
 }
 
 struct Row {
@@ -757,8 +713,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     tr->vp = &ref;
     CheckerConfig mc;
     mc.checker = "fcl-mesh";
-    tr->mesh = makeChecker(ref.p, mc);
-    tr->hull = std::make_shared<DssValidityChecker>(ref.p.si, ref.p.model, ref.p.map);
+    tr->mesh = std::dynamic_pointer_cast<const FclChecker>(makeStateChecker(ref.p.model, mc));
     tr->chains = chainBounds(*ref.p.model);
     tr->delta = a.delta;
     run.truths.push_back(std::move(tr));
@@ -815,7 +770,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       std::vector<double> g;
       uniform(g);
       ref.toQ(g.data(), q.data());
-      ctx.state_truth.push_back(!tr.mesh->isValidJoints(q.data()));
+      ctx.state_truth.push_back(tr.mesh->collides(q.data()));
       ctx.states.push_back(std::move(g));
     }
     // Motions: a truth-free start and a truth-free end (an independent uniform state, or with
@@ -894,10 +849,8 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       in->vp = &vp;
       in->checker = makeSettingChecker(vp, *s);
       if (s->resolution <= 0) {
-        auto dssc = std::dynamic_pointer_cast<DssValidityChecker>(in->checker);
-        in->cmv = std::make_shared<ContinuousMotionValidator>(vp.p.si, dssc);
-        in->s0 = vp.p.si->allocState();
-        in->s1 = vp.p.si->allocState();
+        in->cmv = std::make_shared<const ContinuousMotionChecker>(
+            std::dynamic_pointer_cast<const DssChecker>(in->checker));
       }
       const std::size_t nq = vp.nq();
       in->qs.resize(ctx.states.size() * nq);
@@ -932,11 +885,11 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         Instance& in = *v[si];
         const std::size_t n = run.scenes[si]->states.size(), nq = in.vp->nq();
         std::vector<char> ans(n);
-        in.checker->resetCounters();
+        const std::uint64_t caps0 = in.checker->counters().cap_hits;
         const double c0 = cpuNow();
-        for (std::size_t i = 0; i < n; ++i) ans[i] = !in.checker->isValidJoints(&in.qs[i * nq]);
+        for (std::size_t i = 0; i < n; ++i) ans[i] = in.checker->collides(&in.qs[i * nq]);
         cpu += cpuNow() - c0;
-        caps += in.checker->counters().cap_hits;
+        caps += in.checker->counters().cap_hits - caps0;
         if (rep == 0) ans_state[skey].push_back(std::move(ans));
       }
       t_state[skey].push_back(cpu);
@@ -950,33 +903,29 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         Instance& in = *v[si];
         const std::size_t n = run.scenes[si]->motions.size(), nq = in.vp->nq();
         std::vector<char> ans(n);
-        std::vector<double> qq(nq), ga(in.vp->p.map->dimension()), gb(ga.size());
-        const auto& gact = in.vp->p.map->groupActive();
-        in.checker->resetCounters();
+        std::vector<double> qq(nq);
+        const std::uint64_t caps0 = in.checker->counters().cap_hits;
         const double c0 = cpuNow();
         for (std::size_t i = 0; i < n; ++i) {
           const double* q0 = &in.m0[i * nq];
           const double* q1 = &in.m1[i * nq];
-          bool coll = !in.checker->isValidJoints(q0);
+          bool coll = in.checker->collides(q0);
           if (!coll && in.cmv) {
-            for (std::size_t k = 0; k < gact.size(); ++k) ga[k] = q0[gact[k]], gb[k] = q1[gact[k]];
-            in.vp->p.map->fromGroupValues(ga.data(), in.s0);
-            in.vp->p.map->fromGroupValues(gb.data(), in.s1);
-            coll = !in.cmv->checkMotion(in.s0, in.s1);
+            coll = !in.cmv->clear(q0, q1);
           } else if (!coll) {
             // OMPL order: the end state, then the interior states in order.
-            coll = !in.checker->isValidJoints(q1);
+            coll = in.checker->collides(q1);
             const long segs = in.segs[i];
             for (long j = 1; !coll && j < segs; ++j) {
               const double t = double(j) / double(segs);
               for (std::size_t k = 0; k < nq; ++k) qq[k] = q0[k] + t * (q1[k] - q0[k]);
-              coll = !in.checker->isValidJoints(qq.data());
+              coll = in.checker->collides(qq.data());
             }
           }
           ans[i] = coll;
         }
         cpu += cpuNow() - c0;
-        caps += in.checker->counters().cap_hits;
+        caps += in.checker->counters().cap_hits - caps0;
         if (rep == 0) ans_motion[mkey].push_back(std::move(ans));
       }
       t_motion[mkey].push_back(cpu);
@@ -1010,8 +959,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
             const Truth& tr = *run.truths[si];
             std::vector<double> qv(tr.vp->nq());
             tr.vp->toQ(ctx.states[i].data(), qv.data());
-            const auto* fcl = dynamic_cast<const FclValidityChecker*>(tr.mesh.get());
-            const Diagnosis dg = diagnose(*tr.vp, *fcl, qv.data());
+            const Diagnosis dg = diagnose(*tr.vp, *tr.mesh, qv.data());
             if (dg.fcl_gap) ++r.fcl_gap_claims;
             else ++r.unexplained;
             std::cout << "  " << (dg.fcl_gap ? "FCL claims a collision at a DSS-certified gap" : "** MISS **")
@@ -1079,13 +1027,11 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
           const auto& rn = ref.p.map->jointNames();
           vp.from_truth.push_back(int(std::find(rn.begin(), rn.end(), n) - rn.begin()));
         }
-        auto checker = makeSettingChecker(vp, r.s);
+        auto checker = std::make_shared<ValidityChecker>(p.si, makeSettingChecker(vp, r.s), p.map);
         og::SimpleSetup ss(p.si);
         ss.setStateValidityChecker(checker);
         if (r.s.resolution > 0) p.si->setStateValidityCheckingResolution(r.s.resolution);
-        else
-          p.si->setMotionValidator(std::make_shared<ContinuousMotionValidator>(
-              p.si, std::dynamic_pointer_cast<DssValidityChecker>(checker)));
+        else p.si->setMotionValidator(makeContinuousMotionValidator(p, *checker));
         ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
         ob::ScopedState<> s0(p.si->getStateSpace());
         const std::vector<double> g0 = p.map->groupValues(ctx.start);

@@ -17,13 +17,13 @@ namespace dss_plan {
 SwitchingChecker::SwitchingChecker(const ob::SpaceInformationPtr& si)
     : ob::StateValidityChecker(si) {}
 
-void SwitchingChecker::setActive(const dss::ModelValidityChecker* checker) {
+void SwitchingChecker::setActive(const dss::ValidityChecker* checker) {
   active_.store(checker);
   if (checker) specs_ = checker->getSpecs();
 }
 
 bool SwitchingChecker::isValid(const ob::State* state) const {
-  const dss::ModelValidityChecker* c = active_.load(std::memory_order_relaxed);
+  const dss::ValidityChecker* c = active_.load(std::memory_order_relaxed);
   if (!c) throw std::logic_error("dss_plan: no active validity checker (a planner ran outside its wrapper)");
   const auto t0 = std::chrono::steady_clock::now();
   const bool v = c->isValid(state);
@@ -34,14 +34,14 @@ bool SwitchingChecker::isValid(const ob::State* state) const {
 }
 
 double SwitchingChecker::clearance(const ob::State* state) const {
-  const dss::ModelValidityChecker* c = active_.load(std::memory_order_relaxed);
+  const dss::ValidityChecker* c = active_.load(std::memory_order_relaxed);
   return c ? c->clearance(state) : 0.0;
 }
 
 CheckerBoundPlanner::CheckerBoundPlanner(ob::PlannerPtr inner,
-                                         std::shared_ptr<dss::ModelValidityChecker> checker,
+                                         std::shared_ptr<dss::ValidityChecker> checker,
                                          std::shared_ptr<SwitchingChecker> switching)
-    : ob::Planner(inner->getSpaceInformation(), inner->getName() + "[" + checker->name() + "]"),
+    : ob::Planner(inner->getSpaceInformation(), inner->getName() + "[" + checker->checker().name() + "]"),
       inner_(std::move(inner)),
       checker_(std::move(checker)),
       switching_(std::move(switching)) {
@@ -52,17 +52,17 @@ CheckerBoundPlanner::CheckerBoundPlanner(ob::PlannerPtr inner,
 
 ob::PlannerStatus CheckerBoundPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
   switching_->setActive(checker_.get());
-  checker_->resetCounters();
+  const dss::CheckerCounters counters0 = checker_->counters();
   switching_->resetTime();
   const auto& mv = si_->getMotionValidator();
-  const std::uint64_t motions0 = mv->getValidMotionCount() + mv->getInvalidMotionCount();
+  const std::uint64_t motions0 = dss::motionChecks(*mv);
   const auto* cmv = dynamic_cast<const dss::ContinuousMotionValidator*>(mv.get());
-  const std::uint64_t sub0 = cmv ? cmv->subMotions() : 0;
+  const std::uint64_t sub0 = cmv ? cmv->motionChecker().subMotions() : 0;
   const ob::PlannerStatus status = inner_->solve(ptc);
-  last_.sub_motions = cmv ? static_cast<long long>(cmv->subMotions() - sub0) : -1;
-  last_.counters = checker_->counters();
+  last_.sub_motions = cmv ? static_cast<long long>(cmv->motionChecker().subMotions() - sub0) : -1;
+  last_.counters = checker_->counters() - counters0;
   last_.checking_seconds = switching_->seconds();
-  last_.motion_checks = mv->getValidMotionCount() + mv->getInvalidMotionCount() - motions0;
+  last_.motion_checks = dss::motionChecks(*mv) - motions0;
   return status;
 }
 
@@ -100,7 +100,7 @@ void addRunProperties(const ob::PlannerPtr& planner, ompl::tools::Benchmark::Run
   put("invalid states INTEGER", r.counters.collisions + r.counters.invalid_input);
   put("narrow phase tests INTEGER", r.counters.pair_tests);
   put("motion checks INTEGER", r.motion_checks);
-  if (bound->checker().name() == "dss") put("cap hits INTEGER", r.counters.cap_hits);
+  if (bound->checker().checker().name() == "dss") put("cap hits INTEGER", r.counters.cap_hits);
   if (r.sub_motions >= 0) put("sub motions INTEGER", r.sub_motions);
 }
 

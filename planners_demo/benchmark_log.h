@@ -29,14 +29,14 @@ namespace dss_plan {
 class SwitchingChecker : public ompl::base::StateValidityChecker {
  public:
   explicit SwitchingChecker(const ompl::base::SpaceInformationPtr& si);
-  void setActive(const dss::ModelValidityChecker* checker);
+  void setActive(const dss::ValidityChecker* checker);
   bool isValid(const ompl::base::State* state) const override;
   double clearance(const ompl::base::State* state) const override;
   double seconds() const { return double(ns_.load()) * 1e-9; }
   void resetTime() { ns_ = 0; }
 
  private:
-  std::atomic<const dss::ModelValidityChecker*> active_{nullptr};
+  std::atomic<const dss::ValidityChecker*> active_{nullptr};
   mutable std::atomic<long long> ns_{0};
 };
 
@@ -52,7 +52,7 @@ struct RunRecord {
 class CheckerBoundPlanner : public ompl::base::Planner {
  public:
   CheckerBoundPlanner(ompl::base::PlannerPtr inner,
-                      std::shared_ptr<dss::ModelValidityChecker> checker,
+                      std::shared_ptr<dss::ValidityChecker> checker,
                       std::shared_ptr<SwitchingChecker> switching);
 
   ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
@@ -62,11 +62,11 @@ class CheckerBoundPlanner : public ompl::base::Planner {
   void getPlannerData(ompl::base::PlannerData& data) const override;
 
   const RunRecord& lastRun() const { return last_; }
-  const dss::ModelValidityChecker& checker() const { return *checker_; }
+  const dss::ValidityChecker& checker() const { return *checker_; }
 
  private:
   ompl::base::PlannerPtr inner_;
-  std::shared_ptr<dss::ModelValidityChecker> checker_;
+  std::shared_ptr<dss::ValidityChecker> checker_;
   std::shared_ptr<SwitchingChecker> switching_;
   RunRecord last_;
 };

@@ -51,8 +51,10 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "benchmark_log.h"
+#include "cli.h"
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
+#include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 
 namespace ob = ompl::base;
@@ -79,7 +81,9 @@ const char* kUsage =
     "           --log FILE (dss_plan_benchmark.log; with several problems FILE.<problem>.log).\n"
     "           Load with: ompl_benchmark_statistics FILE... -d results.db (package ompl-demos)\n"
     "  planners: RRTConnect RRT RRTstar LazyRRT BiTRRT pRRT PRM PRMstar LazyPRM KPIECE1\n"
-    "            BKPIECE1 LBKPIECE1 EST SBL pSBL\n";
+    "            BKPIECE1 LBKPIECE1 EST SBL pSBL\n"
+    "  exit codes: 0 every problem solved; 1 runtime error (files, model); 2 usage error;\n"
+    "           3 a problem not solved (stdout then has \"solved\":false)\n";
 
 using PlannerFactory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
 
@@ -107,7 +111,7 @@ const std::map<std::string, PlannerFactory>& planners() {
 // Wraps a checker and accumulates the wall time spent in isValid (for the per-problem report).
 class TimedChecker : public ob::StateValidityChecker {
  public:
-  TimedChecker(const ob::SpaceInformationPtr& si, std::shared_ptr<dss::ModelValidityChecker> inner)
+  TimedChecker(const ob::SpaceInformationPtr& si, std::shared_ptr<dss::ValidityChecker> inner)
       : ob::StateValidityChecker(si), inner_(std::move(inner)) {}
   bool isValid(const ob::State* s) const override {
     const auto t0 = std::chrono::steady_clock::now();
@@ -119,7 +123,7 @@ class TimedChecker : public ob::StateValidityChecker {
   void reset() { ns_ = 0; }
 
  private:
-  std::shared_ptr<dss::ModelValidityChecker> inner_;
+  std::shared_ptr<dss::ValidityChecker> inner_;
   mutable std::atomic<long long> ns_{0};
 };
 
@@ -145,53 +149,17 @@ struct Args {
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
 };
 
-// Strict number parsing: the whole value must be a number in range.
-double parseDouble(const std::string& option, const std::string& v, double lo, double hi) {
-  std::size_t used = 0;
-  double x = 0.0;
-  try {
-    x = std::stod(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size() || !std::isfinite(x) || x < lo || x > hi) {
-    std::ostringstream m;
-    m << option << ": expected a number in [" << lo << ", " << hi << "], got '" << v << "'";
-    throw std::invalid_argument(m.str());
-  }
-  return x;
-}
-
-unsigned long parseUnsigned(const std::string& option, const std::string& v, unsigned long lo,
-                            unsigned long hi) {
-  std::size_t used = 0;
-  unsigned long x = 0;
-  bool ok = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
-  if (ok) {
-    try {
-      x = std::stoul(v, &used);
-    } catch (const std::exception&) {
-      ok = false;
-    }
-  }
-  if (!ok || used != v.size() || x < lo || x > hi) {
-    throw std::invalid_argument(option + ": expected an integer in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "], got '" + v + "'");
-  }
-  return x;
-}
-
-std::vector<std::string> splitList(const std::string& option, const std::string& v) {
+// A comma list of names; an empty or repeated name is a usage error.
+std::vector<std::string> splitList(const dss::cli::ArgCursor& cli, const std::string& option, const std::string& v) {
   std::vector<std::string> out;
   std::stringstream ss(v);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    if (item.empty()) throw std::invalid_argument(option + ": empty name in list '" + v + "'");
-    if (std::find(out.begin(), out.end(), item) != out.end())
-      throw std::invalid_argument(option + ": '" + item + "' listed twice");
+    if (item.empty()) cli.error(option + ": empty name in list '" + v + "'");
+    if (std::find(out.begin(), out.end(), item) != out.end()) cli.error(option + ": '" + item + "' listed twice");
     out.push_back(item);
   }
-  if (out.empty() || v.back() == ',') throw std::invalid_argument(option + ": empty name in list '" + v + "'");
+  if (out.empty() || v.back() == ',') cli.error(option + ": empty name in list '" + v + "'");
   return out;
 }
 
@@ -266,7 +234,7 @@ void setStartAndGoals(og::SimpleSetup& ss, const LoadedProblem& lp) {
 Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files, bool readable) {
   LoadedProblem lp = loadProblem(a, robot, files);
   dss::Problem& p = lp.p;
-  auto checker = dss::makeChecker(p, checkerConfig(a, a.checker));
+  auto checker = dss::makeValidityChecker(p, checkerConfig(a, a.checker));
 
   og::SimpleSetup ss(p.si);
   // The planner sees our checker itself unless checking time is asked for: the clock reads of
@@ -286,14 +254,13 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
   std::shared_ptr<dss::ContinuousMotionValidator> cmv;
   if (a.motion == "continuous") {
-    cmv = std::make_shared<dss::ContinuousMotionValidator>(
-        p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checker), a.min_fraction);
+    cmv = dss::makeContinuousMotionValidator(p, *checker, a.min_fraction);
     p.si->setMotionValidator(cmv);
   }
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
-  checker->resetCounters();
+  const dss::CheckerCounters counters0 = checker->counters();
   if (timed) timed->reset();
 
   // The time limit is checked by the planner itself at every iteration (a clock read). OMPL's
@@ -304,7 +271,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   const double cpu = threadCpuSeconds() - cpu0;
   const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
   const double t = ss.getLastPlanComputationTime();
-  const auto counters = checker->counters();
+  const dss::CheckerCounters counters = checker->counters() - counters0;
   const auto mv = p.si->getMotionValidator();
   double length = 0.0;
   std::size_t path_states = 0;
@@ -337,20 +304,20 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["path_length"] = length;
   j["path_states"] = path_states;
   j["validity_checks"] = counters.checks;
-  j["motion_checks"] = mv->getValidMotionCount() + mv->getInvalidMotionCount();
-  j["checker"] = checker->name();
+  j["motion_checks"] = dss::motionChecks(*mv);
+  j["checker"] = checker->checker().name();
   if (timed) j["checking_time_s"] = timed->seconds();
   j["planner"] = a.planner;
   j["motion"] = a.motion;
   j["cap_hits"] = counters.cap_hits;
-  if (cmv) j["sub_motions"] = cmv->subMotions();
+  if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
   if (!start_valid) j["start_invalid"] = true;
   if (!goal_valid) j["goal_invalid"] = true;
   std::cout << j.dump() << std::endl;
   if (readable) {
     std::cout << "\n" << robot.model->name << " in " << files.scene << "\n  "
               << p.model->summary() << "\n  group '" << p.group << "' (" << p.map->dimension()
-              << " joints), planner " << a.planner << ", checker " << checker->name() << "\n  "
+              << " joints), planner " << a.planner << ", checker " << checker->checker().name() << "\n  "
               << (solved ? "solved" : "NOT solved") << " in " << t * 1e3 << " ms: path of "
               << path_states << " states, length " << length << " rad; " << counters.checks
               << " state checks (" << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
@@ -439,20 +406,19 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
     setStartAndGoals(ss, lp);
 
-    std::vector<std::shared_ptr<dss::ModelValidityChecker>> checkers;
-    for (const auto& name : a.checker_list) checkers.push_back(dss::makeChecker(p, checkerConfig(a, name)));
+    std::vector<std::shared_ptr<dss::ValidityChecker>> checkers;
+    for (const auto& name : a.checker_list) checkers.push_back(dss::makeValidityChecker(p, checkerConfig(a, name)));
     switching->setActive(checkers.front().get());
     if (a.motion == "continuous")
-      p.si->setMotionValidator(std::make_shared<dss::ContinuousMotionValidator>(
-          p.si, std::dynamic_pointer_cast<dss::DssValidityChecker>(checkers.front()), a.min_fraction));
+      p.si->setMotionValidator(dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
     for (const auto& c : checkers) {
       if (!c->isValid(ss.getProblemDefinition()->getStartState(0)))
-        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under " << c->name() << "\n";
+        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under " << c->checker().name() << "\n";
       const auto* goals = ss.getGoal()->as<ob::GoalStates>();
       for (std::size_t g = 0; g < goals->getStateCount(); ++g)
         if (!c->isValid(goals->getState(g)))
           std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g << " in collision under "
-                    << c->name() << "\n";
+                    << c->checker().name() << "\n";
     }
 
     InterleavedBenchmark b(ss, files.name);
@@ -541,71 +507,63 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
   return 0;
 }
 
-dss::Mode parseMode(const std::string& m) {
-  if (m == "exact") return dss::Mode::kExact;
-  if (m == "double") return dss::Mode::kDouble;
-  if (m == "float") return dss::Mode::kFloat;
-  throw std::invalid_argument("--mode: expected exact, double or float, got '" + m + "'");
-}
-
 int run(int argc, char** argv) {
   Args a;
   a.demo = argc == 1;
   bool checker_given = false, runs_given = false, log_given = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(s + " needs a value");
-      return argv[++i];
-    };
-    if (s == "--robot") a.robot = value();
-    else if (s == "--srdf") a.srdf = value();
-    else if (s == "--scene") a.scene = value();
-    else if (s == "--request") a.request = value();
-    else if (s == "--problems") a.problems = value();
-    else if (s == "--planner") a.planner = value();
-    else if (s == "--checker") a.checker = value(), checker_given = true;
-    else if (s == "--motion") a.motion = value();
-    else if (s == "--time") a.time = parseDouble(s, value(), 1e-6, 1e6);
-    else if (s == "--seed") a.seed = parseUnsigned(s, value(), 0, 4294967295ul);
-    else if (s == "--padding") a.padding = parseDouble(s, value(), 0.0, 1e3);
-    else if (s == "--self-padding") a.self_padding = parseDouble(s, value(), 0.0, 1e3);
-    else if (s == "--resolution") a.resolution = parseDouble(s, value(), 0.0, 1.0);
-    else if (s == "--path") a.path = value();
-    else if (s == "--simplify") a.simplify = true;
-    else if (s == "--check-time") a.check_time = true;
-    else if (s == "--motion-min-fraction") a.min_fraction = parseDouble(s, value(), 1e-12, 1.0);
-    else if (s == "--mode") a.dss_options.mode = parseMode(value());
-    else if (s == "--max-iterations") a.dss_options.max_iterations = int(parseUnsigned(s, value(), 1, 1000000));
-    else if (s == "--benchmark") a.benchmark = true;
-    else if (s == "--runs") a.runs = unsigned(parseUnsigned(s, value(), 1, 1000000)), runs_given = true;
-    else if (s == "--log") a.log = value(), log_given = true;
-    else if (s == "--demo") a.demo = true;
-    else if (s == "-h" || s == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else throw std::invalid_argument("unknown argument '" + s + "'\n" + kUsage);
+  dss::cli::ArgCursor cli(argc, argv, "dss_plan", kUsage);
+  while (cli.next()) {
+    if (cli.option("--robot")) a.robot = cli.value();
+    else if (cli.option("--srdf")) a.srdf = cli.value();
+    else if (cli.option("--scene")) a.scene = cli.value();
+    else if (cli.option("--request")) a.request = cli.value();
+    else if (cli.option("--problems")) a.problems = cli.value();
+    else if (cli.option("--planner")) a.planner = cli.value();
+    else if (cli.option("--checker")) a.checker = cli.value(), checker_given = true;
+    else if (cli.option("--motion")) a.motion = cli.value();
+    else if (cli.option("--time")) a.time = cli.number(1e-6, 1e6);
+    else if (cli.option("--seed")) a.seed = static_cast<unsigned long>(cli.integer(0, 4294967295));
+    else if (cli.option("--padding")) a.padding = cli.number(0.0, 1e3);
+    else if (cli.option("--self-padding")) a.self_padding = cli.number(0.0, 1e3);
+    else if (cli.option("--resolution")) a.resolution = cli.number(0.0, 1.0);
+    else if (cli.option("--path")) a.path = cli.value();
+    else if (cli.flag("--simplify")) a.simplify = true;
+    else if (cli.flag("--check-time")) a.check_time = true;
+    else if (cli.option("--motion-min-fraction")) a.min_fraction = cli.number(1e-12, 1.0);
+    else if (cli.option("--mode")) {
+      const std::string m = cli.value();
+      if (m == "exact") a.dss_options.mode = dss::Mode::kExact;
+      else if (m == "double") a.dss_options.mode = dss::Mode::kDouble;
+      else if (m == "float") a.dss_options.mode = dss::Mode::kFloat;
+      else cli.error("--mode: expected exact, double or float, got '" + m + "'");
+    } else if (cli.option("--max-iterations")) a.dss_options.max_iterations = static_cast<int>(cli.integer(1, 1000000));
+    else if (cli.flag("--benchmark")) a.benchmark = true;
+    else if (cli.option("--runs")) a.runs = static_cast<unsigned>(cli.integer(1, 1000000)), runs_given = true;
+    else if (cli.option("--log")) a.log = cli.value(), log_given = true;
+    else if (cli.flag("--demo")) a.demo = true;
+    else cli.unknown();
   }
   if (a.benchmark && !checker_given) a.checker = "dss,fcl-hull";
-  a.planner_list = splitList("--planner", a.planner);
-  a.checker_list = splitList("--checker", a.checker);
+  a.planner_list = splitList(cli, "--planner", a.planner);
+  a.checker_list = splitList(cli, "--checker", a.checker);
   for (const auto& pl : a.planner_list)
     if (planners().find(pl) == planners().end())
-      throw std::invalid_argument("unknown planner '" + pl + "'\n" + kUsage);
+      cli.error("--planner: unknown planner '" + pl + "' (dss_plan --help lists them)");
   for (const auto& c : a.checker_list)
     if (c != "dss" && c != "fcl-hull" && c != "fcl-mesh")
-      throw std::invalid_argument("unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");
-  if (a.motion != "discrete" && a.motion != "continuous") throw std::invalid_argument("--motion must be discrete or continuous");
+      cli.error("--checker: unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");
+  if (a.motion != "discrete" && a.motion != "continuous")
+    cli.error("--motion: expected discrete or continuous, got '" + a.motion + "'");
   if (a.motion == "continuous" && a.checker_list != std::vector<std::string>{"dss"})
-    throw std::invalid_argument("--motion continuous needs --checker dss (the continuous validator is DSS's)");
+    cli.error("--motion continuous needs --checker dss (the continuous validator is DSS's)");
   if (!a.benchmark) {
-    if (a.planner_list.size() > 1) throw std::invalid_argument("--planner: a list of planners needs --benchmark");
-    if (a.checker_list.size() > 1) throw std::invalid_argument("--checker: a list of checkers needs --benchmark");
-    if (runs_given) throw std::invalid_argument("--runs needs --benchmark");
-    if (log_given) throw std::invalid_argument("--log needs --benchmark");
+    if (a.planner_list.size() > 1) cli.error("--planner: a list of planners needs --benchmark");
+    if (a.checker_list.size() > 1) cli.error("--checker: a list of checkers needs --benchmark");
+    if (runs_given) cli.error("--runs needs --benchmark");
+    if (log_given) cli.error("--log needs --benchmark");
   } else {
-    if (!a.path.empty()) throw std::invalid_argument("--path is not available with --benchmark");
-    if (a.log.empty()) throw std::invalid_argument("--log: empty file name");
+    if (!a.path.empty()) cli.error("--path is not available with --benchmark");
+    if (a.log.empty()) cli.error("--log: empty file name");
   }
 
   std::vector<ProblemFiles> problems;
@@ -616,11 +574,11 @@ int run(int argc, char** argv) {
     a.srdf = root + "/dss_arm7.srdf";
     problems.push_back({"dss_arm7/shelf", root + "/scenes/shelf.yaml", root + "/scenes/shelf_request.yaml"});
   } else {
-    if (a.robot.empty()) throw std::invalid_argument(std::string("--robot is required\n") + kUsage);
+    if (a.robot.empty()) cli.error("--robot is required");
     if (!a.problems.empty()) problems = listProblems(a.problems);
     else if (!a.request.empty())
       problems.push_back({fs::path(a.request).stem().string(), a.scene, a.request});
-    else throw std::invalid_argument(std::string("--request or --problems is required\n") + kUsage);
+    else cli.error("--request or --problems is required");
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(a.seed);
@@ -645,7 +603,7 @@ int run(int argc, char** argv) {
   sum << "summary: solved " << solved << " of " << problems.size() << " (" << a.planner << ", "
       << a.checker << ", seed " << a.seed << "); planning time median " << median * 1e3 << " ms, p95 "
       << p95 * 1e3 << " ms\n";
-  return solved == int(problems.size()) ? 0 : 2;
+  return solved == int(problems.size()) ? 0 : 3;
 }
 
 }  // namespace

@@ -10,15 +10,15 @@
 // stderr with the median time per pair.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli.h"
 #include "pairs_fcl.h"
 #include "pairs_input.h"
 #include "pairs_shapes.h"
@@ -27,7 +27,7 @@ namespace {
 
 using namespace dss::pairs;
 
-constexpr int kExitUsage = 2;
+constexpr int kExitUsage = dss::cli::kExitUsage;
 
 const char* const kUsage = R"(usage: dss_pairs [options] FILE        (FILE = - reads stdin)
 
@@ -52,7 +52,8 @@ Options:
   --algo A           dss (default), gjk, hybrid or fcl (FCL 0.7, fcl::collide with a
                      default CollisionRequest: GJK solver libccd). A comma list (dss,gjk,fcl)
                      needs --time; stdout then has the answers of the first one.
-  --mode M           exact (default), double or float (fcl always computes in double)
+  --mode M           exact (default), double or float: the search in float arithmetic, on
+                     supports rounded to float (fcl always computes in double)
   --max-iterations N cap on support evaluations (default: the core's, 64)
   --padding r        grow shape A by a ball of radius r: the answer is then "distance <= r"
                      (fcl: collide, then fcl::distance <= r for pairs that do not collide)
@@ -78,76 +79,35 @@ struct Args {
   std::string file;
 };
 
-[[noreturn]] void usageError(const std::string& what) {
-  std::fprintf(stderr, "dss_pairs: %s\n(dss_pairs --help for usage)\n", what.c_str());
-  std::exit(kExitUsage);
-}
-
-double parseDouble(const std::string& opt, const std::string& v) {
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0' || !std::isfinite(x))
-    usageError(opt + ": expected a finite number, got '" + v + "'");
-  return x;
-}
-
-int parseInt(const std::string& opt, const std::string& v, int min) {
-  char* end = nullptr;
-  const long x = std::strtol(v.c_str(), &end, 10);
-  if (v.empty() || *end != '\0' || x < min || x > 1000000000)
-    usageError(opt + ": expected an integer >= " + std::to_string(min) + ", got '" + v + "'");
-  return static_cast<int>(x);
-}
-
 Args parseArgs(int argc, char** argv) {
   Args args;
   std::string algo_list = "dss";
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    std::string value;
-    bool has_value = false;
-    if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
-      const auto eq = a.find('=');
-      if (eq != std::string::npos) {
-        value = a.substr(eq + 1);
-        a = a.substr(0, eq);
-        has_value = true;
-      }
-    }
-    auto need = [&]() -> std::string {
-      if (has_value) return value;
-      if (i + 1 >= argc) usageError(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (a == "--algo") {
-      algo_list = need();
-    } else if (a == "--mode") {
-      const std::string m = need();
+  dss::cli::ArgCursor cli(argc, argv, "dss_pairs", kUsage);
+  while (cli.next()) {
+    if (cli.option("--algo")) {
+      algo_list = cli.value();
+    } else if (cli.option("--mode")) {
+      const std::string m = cli.value();
       if (m == "exact") args.mode = dss::Mode::kExact;
       else if (m == "double") args.mode = dss::Mode::kDouble;
       else if (m == "float") args.mode = dss::Mode::kFloat;
-      else usageError("--mode: expected exact, double or float, got '" + m + "'");
-    } else if (a == "--max-iterations") {
-      args.max_iterations = parseInt(a, need(), 1);
-    } else if (a == "--padding") {
-      args.padding = parseDouble(a, need());
-      if (args.padding < 0) usageError("--padding: must not be negative");
-    } else if (a == "--time") {
-      if (has_value) usageError("--time takes no value");
+      else cli.error("--mode: expected exact, double or float, got '" + m + "'");
+    } else if (cli.option("--max-iterations")) {
+      args.max_iterations = static_cast<int>(cli.integer(1, 1000000000));
+    } else if (cli.option("--padding")) {
+      args.padding = cli.number(0, std::numeric_limits<double>::max());
+    } else if (cli.flag("--time")) {
       args.time = true;
-    } else if (a == "--repeat") {
-      args.repeat = parseInt(a, need(), 1);
-    } else if (a == "-" || a.empty() || a[0] != '-') {
-      if (!args.file.empty()) usageError("more than one input file");
-      args.file = a;
+    } else if (cli.option("--repeat")) {
+      args.repeat = static_cast<int>(cli.integer(1, 1000000000));
+    } else if (cli.positional("FILE")) {
+      if (!args.file.empty()) cli.error("more than one input file");
+      args.file = cli.value();
     } else {
-      usageError("unknown option " + a);
+      cli.unknown();
     }
   }
-  if (args.file.empty()) usageError("no input file (use - for stdin)");
+  if (args.file.empty()) cli.error("no input file (use - for stdin)");
   std::stringstream ss(algo_list);
   std::string name;
   while (std::getline(ss, name, ',')) {
@@ -156,14 +116,14 @@ Args parseArgs(int argc, char** argv) {
     else if (name == "gjk") algo = Algo::kGjk;
     else if (name == "hybrid") algo = Algo::kHybrid;
     else if (name == "fcl") algo = Algo::kFcl;
-    else usageError("--algo: expected dss, gjk, hybrid or fcl, got '" + name + "'");
+    else cli.error("--algo: expected dss, gjk, hybrid or fcl, got '" + name + "'");
     if (std::find(args.algos.begin(), args.algos.end(), algo) != args.algos.end())
-      usageError("--algo: '" + name + "' given twice");
+      cli.error("--algo: '" + name + "' given twice");
     args.algos.push_back(algo);
     args.algo_names.push_back(name);
   }
-  if (args.algos.empty()) usageError("--algo: empty list");
-  if (args.algos.size() > 1 && !args.time) usageError("--algo: a list needs --time");
+  if (args.algos.empty()) cli.error("--algo: empty list");
+  if (args.algos.size() > 1 && !args.time) cli.error("--algo: a list needs --time");
   return args;
 }
 
@@ -174,8 +134,7 @@ CoreAlgo coreAlgo(Algo a) {
 /// Everything one run needs, built once from the file.
 struct Workload {
   std::vector<std::string> ids;
-  std::vector<CorePair<double>> core_double;
-  std::vector<CorePair<float>> core_float;
+  std::vector<CorePair> core;
   std::vector<FclPair> fcl;
 };
 
@@ -193,10 +152,7 @@ void decide(Algo algo, const Args& args, const dss::Options& opt, const Workload
       out.fcl[i] = fclIntersect(w.fcl[i], args.padding) ? 1 : 0;
     return;
   }
-  if (args.mode == dss::Mode::kFloat)
-    decideAll(coreAlgo(algo), w.core_float, opt, out.results);
-  else
-    decideAll(coreAlgo(algo), w.core_double, opt, out.results);
+  decideAll(coreAlgo(algo), w.core, opt, args.padding, out.results);
 }
 
 void printAnswers(Algo algo, const Workload& w, const Answers& ans) {
@@ -296,13 +252,7 @@ int main(int argc, char** argv) {
       for (const PairSpec& p : specs) {
         line = p.line;
         w.ids.push_back(p.id_json);
-        if (need_core) {
-          CorePair<double> c{makeSideA(p.a, args.padding), makeShape(p.b)};
-          if (args.mode == dss::Mode::kFloat)
-            w.core_float.push_back(CorePair<float>{toFloat(c.a), toFloat(c.b)});
-          else
-            w.core_double.push_back(std::move(c));
-        }
+        if (need_core) w.core.push_back(makeCorePair(p.a, p.b));
         if (need_fcl) w.fcl.push_back(FclPair{makeFclShape(p.a), makeFclShape(p.b)});
       }
     } catch (const PairsInputError& e) {

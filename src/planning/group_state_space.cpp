@@ -165,20 +165,4 @@ std::vector<double> GroupStateMap::groupValues(const std::map<std::string, doubl
   return g;
 }
 
-std::vector<double> heldState(const RobotModel& robot,
-                              const std::vector<std::map<std::string, double>>& overrides,
-                              std::vector<std::string>* ignored) {
-  std::vector<double> q = robot.defaultState();
-  for (const auto& m : overrides)
-    for (const auto& [name, value] : m) {
-      const int j = robot.jointIndex(name);
-      if (j < 0 || robot.joints[j].active_index < 0) {
-        if (ignored) ignored->push_back(name);
-        continue;
-      }
-      q[robot.joints[j].active_index] = value;
-    }
-  return q;
-}
-
 }  // namespace dss

@@ -52,4 +52,20 @@ std::vector<double> assembleState(const RobotModel& model, const std::vector<std
   return q;
 }
 
+std::vector<double> heldState(const RobotModel& robot,
+                              const std::vector<std::map<std::string, double>>& overrides,
+                              std::vector<std::string>* ignored) {
+  std::vector<double> q = robot.defaultState();
+  for (const auto& m : overrides)
+    for (const auto& [name, value] : m) {
+      const int j = robot.jointIndex(name);
+      if (j < 0 || robot.joints[j].active_index < 0) {
+        if (ignored) ignored->push_back(name);
+        continue;
+      }
+      q[robot.joints[j].active_index] = value;
+    }
+  return q;
+}
+
 }  // namespace dss

@@ -62,8 +62,6 @@ int RobotModel::rigidAncestor(int link) const {
   return link;
 }
 
-bool RobotModel::linkMoves(int link) const { return links[rigidAncestor(link)].parent_joint >= 0; }
-
 std::vector<double> RobotModel::defaultState() const {
   std::vector<double> q(active_joints.size(), 0.0);
   for (std::size_t i = 0; i < active_joints.size(); ++i) {

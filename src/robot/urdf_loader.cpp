@@ -148,6 +148,8 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
       xml::fail(file, g, msg);
     }
     out.description = what + " mesh " + *path;
+    out.mesh_path = *path;
+    out.mesh_scale = scale;
     const auto key = std::make_pair(*path, std::array<double, 3>{scale.x(), scale.y(), scale.z()});
     auto it = cache.hulls.find(key);
     if (it == cache.hulls.end()) {

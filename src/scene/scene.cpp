@@ -6,7 +6,6 @@
 #include <sstream>
 #include <type_traits>
 
-#include "dss/mesh/mesh.h"
 #include "dss/scene/scene_error.h"
 
 namespace dss {
@@ -116,22 +115,6 @@ void resolveFrames(Scene& scene, const FrameMap& frames, bool require_all) {
       throw SceneError(scene.source + ": object '" + o.object_id + "' is placed in frame '" +
                        o.frame_id + "', which is neither the world nor a known frame");
     }
-  }
-}
-
-void bakeHullsToWorld(Scene& scene) {
-  for (auto& o : scene.obstacles) {
-    auto* hull = std::get_if<ConvexHull>(&o.shape);
-    if (!hull || !o.frame_resolved || o.X_WO.isApprox(Eigen::Isometry3d::Identity(), 0.0))
-      continue;
-    std::vector<Eigen::Vector3d> pts;
-    pts.reserve(hull->size());
-    for (const auto& p : hull->points()) pts.push_back(o.X_WO * p);
-    *hull = mesh::convexHull(pts, scene.source + ": object '" + o.name + "'");
-    // The vertices are now world points: the obstacle is in the world frame for good.
-    o.X_WO.setIdentity();
-    o.X_FO.setIdentity();
-    o.frame_id.clear();
   }
 }
 

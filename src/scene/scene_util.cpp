@@ -1,7 +1,7 @@
 // Checked inputs and mesh URIs for the scene readers.
 #include "scene_util.h"
 
-#include "dss/robot/mesh_paths.h"
+#include "dss/mesh/mesh_paths.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -53,7 +53,7 @@ std::string readTextFile(const std::string& path) {
 
 std::string resolveMeshUri(const std::string& uri, const std::string& base_dir,
                            const SceneLoadOptions& options, const std::string& where) {
-  // One search order for robots and scenes: dss::resolveMeshUri (dss/robot/mesh_paths.h).
+  // One search order for robots and scenes: dss::resolveMeshUri (dss/mesh/mesh_paths.h).
   static const std::string kPackage = "package://";
   if (uri.compare(0, kPackage.size(), kPackage) == 0) {
     const std::string rest = uri.substr(kPackage.size());

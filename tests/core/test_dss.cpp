@@ -8,6 +8,7 @@
 #include "dss/core/any_shape_query.h"
 #include "dss/core/dss.h"
 #include "dss/core/gjk.h"
+#include "dss/core/padded.h"
 #include "dss/core/swept.h"
 #include "support/exact_reference.h"
 

@@ -6,6 +6,9 @@
 #include <random>
 
 #include "dss/core/any_shape_query.h"
+#include "dss/core/dss.h"
+#include "dss/core/padded.h"
+#include "dss/core/posed.h"
 #include "dss/core/spherical_polygon.h"
 
 using namespace dss;

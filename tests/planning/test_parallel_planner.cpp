@@ -17,6 +17,8 @@
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
+BOOST_AUTO_TEST_SUITE(parallel_planner)
+
 BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
   const std::string arm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
   const auto robot = dss::loadRobot(arm + "/dss_arm7.urdf", arm + "/dss_arm7.srdf");
@@ -24,9 +26,9 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
   for (const bool continuous : {false, true}) {
     dss::Problem p =
         dss::makeProblem(robot, dss::loadScene(arm + "/scenes/shelf.yaml"), req.group_name, req.startState());
-    auto checker = std::static_pointer_cast<dss::DssValidityChecker>(dss::makeChecker(p, {"dss"}));
-    auto fcl = dss::makeChecker(p, {"fcl-hull"});
-    auto cmv = std::make_shared<dss::ContinuousMotionValidator>(p.si, checker);
+    auto checker = dss::makeValidityChecker(p, {"dss"});
+    auto fcl = dss::makeValidityChecker(p, {"fcl-hull"});
+    auto cmv = dss::makeContinuousMotionValidator(p, *checker);
     og::SimpleSetup ss(p.si);
     ss.setStateValidityChecker(checker);
     if (continuous) p.si->setMotionValidator(cmv);
@@ -83,7 +85,9 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
     const auto c = checker->counters();
     BOOST_TEST(c.collisions + c.invalid_input <= c.checks);
     BOOST_TEST_MESSAGE("pRRT x2 (" << (continuous ? "continuous" : "discrete") << "): 8 problems, " << c.checks
-                                   << " state checks, " << cmv->subMotions() << " continuous sub-motions, " << motions_rejected
+                                   << " state checks, " << cmv->motionChecker().subMotions() << " continuous sub-motions, " << motions_rejected
                                    << " path motions the continuous validator rejects");
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()

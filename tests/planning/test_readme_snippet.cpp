@@ -23,7 +23,7 @@ BOOST_AUTO_TEST_CASE(plans_with_the_dss_checker) {
   dss::Problem problem = dss::makeProblem(robot, dss::loadScene(dir + "scenes/shelf.yaml"),
                                           request.group_name, request.startState());
   dss::CheckerConfig config;  // checker "dss", Mode::kExact, no padding
-  auto checker = dss::makeChecker(problem, config);
+  auto checker = dss::makeValidityChecker(problem, config);
 
   og::SimpleSetup ss(problem.si);
   ss.setStateValidityChecker(checker);

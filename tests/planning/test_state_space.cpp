@@ -1,21 +1,21 @@
 // Group state spaces: bounded joints as a real-vector space with the URDF limits, continuous
 // joints as SO2 parts of a compound space, values mapped by joint name; held joints outside
-// their limits are reported; the model's pairs and pruning on our own robots.
+// their limits are reported. (The collision model's pairs and pruning: tests/checker.)
 #include <cmath>
-#include <random>
 
 #include <boost/test/unit_test.hpp>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include "dss/planning/planning_problem.h"
-#include "dss/scene/scene_loader.h"
 
 namespace ob = ompl::base;
 
 namespace {
 const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots";
 }
+
+BOOST_AUTO_TEST_SUITE(group_state_space)
 
 BOOST_AUTO_TEST_CASE(arm_group_is_a_bounded_real_vector_space) {
   const auto r = dss::loadRobot(kRobots + "/dss_arm7/dss_arm7.urdf", kRobots + "/dss_arm7/dss_arm7.srdf");
@@ -64,7 +64,7 @@ BOOST_AUTO_TEST_CASE(continuous_joints_become_so2_parts) {
   std::vector<double> back(g.size());
   p.map->toGroupValues(s.get(), back.data());
   for (std::size_t i = 0; i < g.size(); ++i) BOOST_TEST(std::abs(back[i] - g[i]) < 1e-12);
-  auto c = dss::makeChecker(p, {"dss"});
+  auto c = dss::makeValidityChecker(p, {"dss"});
   (void)c->isValid(s.get());
   BOOST_TEST(c->counters().checks == 1u);
 }
@@ -88,37 +88,4 @@ BOOST_AUTO_TEST_CASE(held_joint_outside_limits_is_reported) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(shelf_model_pairs_and_pruning) {
-  const std::string dir = kRobots + "/dss_arm7";
-  const auto r = dss::loadRobot(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf");
-  dss::Scene scene = dss::loadScene(dir + "/scenes/shelf.yaml");
-  // A far-away obstacle that no link can reach is pruned.
-  dss::Obstacle far = scene.obstacles.at(0);
-  far.name = far.object_id = "far_away";
-  far.X_WO.translation() += Eigen::Vector3d(50, 0, 0);
-  far.X_FO = far.X_WO;
-  scene.obstacles.push_back(far);
-  const std::size_t n = scene.obstacles.size();
-  dss::Problem p = dss::makeProblem(r, scene, "arm", {});
-  const auto& m = *p.model;
-  BOOST_TEST_MESSAGE(m.summary());
-  BOOST_TEST(m.obstaclesBefore() == n);
-  BOOST_TEST(m.scene().obstacles.size() == n - 1);
-  for (const auto& o : m.scene().obstacles) BOOST_TEST(o.name != "far_away");
-  // Non-moving links are never checked against the scene; every self pair has a moving link.
-  for (const auto& s : m.slots())
-    if (!s.moves) BOOST_TEST(s.obstacles.empty());
-  for (const auto& sp : m.selfPairs()) BOOST_TEST((m.slots()[sp.a].moves || m.slots()[sp.b].moves));
-  // Reach balls hold every element at random states.
-  std::vector<double> q = m.held();
-  std::mt19937_64 rng(5);
-  for (int k = 0; k < 200; ++k) {
-    for (std::size_t i = 0; i < p.map->dimension(); ++i)
-      q[p.map->groupActive()[i]] = std::uniform_real_distribution<double>(p.map->lower(i), p.map->upper(i))(rng);
-    const auto X = m.kinematics().linkPoses(q);
-    for (const auto& s : m.slots()) {
-      if (!s.moves) continue;
-      BOOST_TEST((X[s.link] * s.center_L - s.reach_center_W).norm() + s.radius <= s.reach_radius + 1e-9);
-    }
-  }
-}
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,5 +1,4 @@
-// Scene data: world bounding boxes of every shape type, the allowed collision matrix,
-// filtering, and baking hulls into world coordinates.
+// Scene data: world bounding boxes of every shape type and the allowed collision matrix.
 #include <cmath>
 
 #include <boost/test/unit_test.hpp>
@@ -27,7 +26,7 @@ BOOST_AUTO_TEST_CASE(world_aabb_of_rotated_shapes) {
   BOOST_TEST(dss::describeShape(o.shape) == "cylinder r 0.5 length 2");
 }
 
-BOOST_AUTO_TEST_CASE(acm_and_filtering) {
+BOOST_AUTO_TEST_CASE(acm_and_object_ids) {
   dss::AllowedCollisionMatrix acm;
   acm.allow("b", "a");
   acm.allowAlways("table");
@@ -43,32 +42,7 @@ BOOST_AUTO_TEST_CASE(acm_and_filtering) {
     o.X_WO.translation() = Eigen::Vector3d(i, 0, 0);
     s.obstacles.push_back(o);
   }
-  const auto removed = s.removeObstaclesIf(
-      [](const dss::Obstacle& o) { return dss::worldAabb(o).center().x() > 2.5; });
-  BOOST_TEST(removed == 2u);
-  BOOST_TEST(s.objectIds() == (std::vector<std::string>{"o0", "o1", "o2"}));
-}
-
-BOOST_AUTO_TEST_CASE(bake_hulls_to_world) {
-  dss::Scene s;
-  dss::Obstacle o;
-  o.name = o.object_id = "tet";
-  o.shape = dss::ConvexHull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
-  o.X_FO.translation() = Eigen::Vector3d(0, 0, 5);
-  o.frame_id = "base_link";
-  o.frame_resolved = false;
-  s.obstacles.push_back(o);
-  dss::FrameMap frames;
-  frames["base_link"] = Eigen::Isometry3d(Eigen::Translation3d(1, 0, 0));
-  dss::resolveFrames(s, frames);
-  const dss::Aabb before = dss::worldAabb(s.obstacles[0]);
-  dss::bakeHullsToWorld(s);
-  const auto& baked = s.obstacles[0];
-  BOOST_TEST(baked.X_WO.isApprox(Eigen::Isometry3d::Identity()));
-  BOOST_TEST(baked.frame_id.empty());
-  const dss::Aabb after = dss::worldAabb(baked);
-  BOOST_TEST((after.lower - before.lower).norm() == 0.0);
-  BOOST_TEST((after.upper - Eigen::Vector3d(2, 1, 6)).norm() == 0.0);
+  BOOST_TEST(s.objectIds() == (std::vector<std::string>{"o0", "o1", "o2", "o3", "o4"}));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

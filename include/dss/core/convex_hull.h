@@ -15,12 +15,10 @@
 //    maximiser of every direction in the cell is among them, and the support takes the best
 //    of them (2-4 dot products, no branch per vertex). A list longer than kMaxCandidates
 //    (a hull with very many vertices) climbs along hull edges from b instead.
-// Panda link hulls (102-152 vertices, kSeedGrid 16): 554-732 of the 1536 cells certified,
-// most others list 2-4 vertices; random directions took 36-48 ns per support against 46-59
-// ns when climbing from the centre's vertex (same process, interleaved).
-// `kHillClimbMinVertices` is where climbing starts to pay (measured by `dss_bench narrowphase
-// --sweep`; FCL, coal and CGAL switch near 32; on our machines the scan still wins at 32 and
-// they break even near 48).
+// On hulls like the Panda's links (about a hundred vertices) a third to a half of the cells
+// are certified and most others list 2-4 vertices, which beats climbing from the centre's
+// vertex. `kHillClimbMinVertices` is where climbing starts to beat the linear scan (`dss_bench
+// narrowphase --sweep` measures it; FCL, coal and CGAL switch near 32).
 //
 // Points given in world coordinates are returned bit for bit by `support` (with a zero
 // shift), so the exact mode decides such pairs exactly.
@@ -72,8 +70,7 @@ DSS_INLINE int scanSoa(const T* x, int stride, int n, T dx, T dy, T dz) {
 // Two points per step, each lane keeping its own best value and index; the lanes then agree
 // on the first index of the largest value, as the linear scan would. max(v, best) is exactly
 // "v > best ? v : best" (MAXPD returns its second operand for equal values, for zeros of either
-// sign and for a NaN), one instruction where the blend took three: 16-vertex polytopes 7-11 %
-// faster in `double` (interleaved harness), boxes (no hull) unchanged.
+// sign and for a NaN): one instruction, where a compare-and-blend takes three.
 DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy, double dz) {
   (void)n;
   const double* y = x + stride;

@@ -24,6 +24,7 @@
 #include "dss/core/any_shape.h"
 #include "dss/core/exact_predicates.h"
 #include "dss/core/posed.h"
+#include "dss/core/ref.h"
 #include "dss/core/result.h"
 #include "dss/core/simplex.h"
 #include "dss/core/spherical_polygon.h"
@@ -144,12 +145,17 @@ int exactSeparationSign(const A& a, const B& b, const Vec3d& n, Vec3d& pa, Vec3d
 
 enum class Step { kContinue, kDone, kGiveUp };
 
-/// A posed ball (a sphere with a pose): its support point c + r d/|d| needs a square root and a
-/// division on the search's critical path, which the plain search avoids (see testBallDirection).
+/// A posed ball (a sphere with a pose, held by value or by reference): its support point
+/// c + r d/|d| needs a square root and a division on the search's critical path, which the
+/// plain search avoids (see testBallDirection).
 template <class S>
 struct IsPosedBall : std::false_type {};
-template <class T>
-struct IsPosedBall<Posed<SphereT<T>>> : std::true_type {};
+template <class S>
+struct IsPosedBall<Posed<S>> {
+  static constexpr bool value = std::is_same<std::decay_t<decltype(unref(std::declval<const S&>()))>,
+                                             SphereT<ScalarOf<S>>>::value;
+  static ScalarOf<S> radius(const Posed<S>& ball) { return unref(ball.shape).radius; }
+};
 
 /// The plain double search's test of direction n when B is a ball of centre c and radius r (in the
 /// working frame): h_A(n) + h_B(-n) = n.(S_A(n) - c) + r |n|, one square root and no division,
@@ -164,7 +170,8 @@ DSS_INLINE bool testBallDirection(const B& ball, const Diff& diff, const Vec3<W>
   const W len = std::sqrt(n2);
   diff.supportA(n, pa);
   const Vec3<W> core = diff3(pa, diff3(ball.p_WS, diff.shift_b));
-  const W t = dot3(n, core) + ball.shape.radius * len;
+  const W r = IsPosedBall<B>::radius(ball);
+  const W t = dot3(n, core) + r * len;
   if (!std::isfinite(t)) {
     result.status = Status::kInvalidInput;
     step = Step::kDone;
@@ -176,7 +183,7 @@ DSS_INLINE bool testBallDirection(const B& ball, const Diff& diff, const Vec3<W>
     step = Step::kDone;
     return true;
   }
-  pole.hi = sum3(scaled3(core, len), scaled3(n, ball.shape.radius));
+  pole.hi = sum3(scaled3(core, len), scaled3(n, r));
   step = Step::kContinue;
   return true;
 }
@@ -188,8 +195,7 @@ template <bool Exact, bool Filter, bool kHybrid, class A, class B, class W, clas
 DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
                               Vec3<W>& pb, PoleT& pole, Result& result) {
   (void)a, (void)b;
-  // In double only: in float (float shapes) the same test made frustum-sphere queries 30-45 %
-  // slower in `dss_bench narrowphase`, for a reason we have not found.
+  // In double only: with float shapes the general test is the faster one.
   if constexpr (!Filter && !kHybrid && IsPosedBall<B>::value && std::is_same<W, double>::value &&
                 std::is_same<ScalarOf<B>, W>::value) {
     Step step;
@@ -232,11 +238,20 @@ DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Ve
   }
 }
 
-/// One search. Sign policies as in SphericalPolygon: plain (Exact = Filter = false), filtered
-/// (Filter only: returns false, leaving `result` meaningless, as soon as a sign or the final
+/// The polygon update of the exact search, out of line: the exact search runs only for the
+/// queries the filtered search cannot decide, and its clip (exact predicates included) is then
+/// compiled once per translation unit instead of once per pair of shape types.
+template <class Poly, class PoleT>
+DSS_NOINLINE ClipResult clipOutOfLine(Poly& poly, const PoleT& pole) {
+  return poly.clip(pole);
+}
+
+/// One search, one function per instantiation (its supports and the polygon update inlined).
+/// Sign policies as in SphericalPolygon: plain (Exact = Filter = false), filtered (Filter
+/// only: returns false, leaving `result` meaningless, as soon as a sign or the final
 /// separation cannot be certified) and exact (both). Returns true with the answer in `result`.
 template <class W, bool Exact, bool Filter, class A, class B, bool kHybrid>
-DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
+DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
   constexpr bool kOnlyFilter = Filter && !Exact;
   const Difference<A, B, W, Filter> diff(a, b);
   using Poly = SphericalPolygon<W, Exact, Filter>;
@@ -291,7 +306,13 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
       pole.lo = diff.error(pa, pb);
       pole.norm = Poly::normBound(pole.hi);
     }
-    switch (poly.clip(pole)) {
+    ClipResult clipped;
+    if constexpr (Exact) {
+      clipped = clipOutOfLine(poly, pole);
+    } else {
+      clipped = poly.clip(pole);
+    }
+    switch (clipped) {
       case ClipResult::kEmpty:
         return true;
       case ClipResult::kOverflow:
@@ -324,13 +345,6 @@ DSS_INLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_st
   }
 }
 
-/// The exact search, kept out of line: it runs only for the rare queries the filter cannot
-/// decide, and inlining it would double the code of every exact-mode query.
-template <class W, class A, class B, bool kHybrid>
-DSS_NOINLINE void searchExact(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
-  searchDss<W, true, true, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
-}
-
 /// The search in one of the three modes. The exact mode first runs the filtered search, which
 /// makes the exact search's decisions at the plain search's cost (no rounding errors carried,
 /// one bound per sign), and reruns the query exactly only when a sign was too close to call.
@@ -341,7 +355,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
     if (searchDss<W, false, true, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result))
       return result;
     result = Result{};
-    searchExact<W, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
+    searchDss<W, true, true, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
   } else {
     searchDss<W, false, false, A, B, kHybrid>(a, b, max_iterations, gjk_steps, result);
   }
@@ -352,7 +366,7 @@ Result runDss(const A& a, const B& b, int max_iterations, int gjk_steps = 0) {
 template <class A, class B>
 Result runDssExactOnly(const A& a, const B& b, int max_iterations) {
   Result result;
-  searchExact<double, A, B, false>(a, b, max_iterations, 0, result);
+  searchDss<double, true, true, A, B, false>(a, b, max_iterations, 0, result);
   return result;
 }
 

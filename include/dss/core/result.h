@@ -10,9 +10,11 @@ namespace dss {
 
 /// Arithmetic of the decision.
 ///  - kExact: double arithmetic with filtered signs and an exact fallback. Never wrong for
-///    shapes whose support returns input points (ConvexHull in world coordinates); for other
-///    shapes a "disjoint" answer is certified and an "intersect" answer is exact up to the
-///    rounding of the support points (about 1e-16 of their size).
+///    shapes whose support returns input points (two ConvexHulls in world coordinates, or at
+///    the exact identity pose on the model-shape dispatch of any_shape_query.h); for other
+///    shapes -- every posed shape, so every robot link -- a "disjoint" answer is certified and
+///    an "intersect" answer is exact up to the rounding of the support points (about 1e-16 of
+///    their size). A checker built on it never answers "free" for a colliding pair.
 ///  - kDouble: plain double signs; may be wrong within rounding of contact.
 ///  - kFloat: the search in float (supports of double shapes are rounded to float); may be
 ///    wrong within float rounding of contact.

@@ -75,12 +75,9 @@ DSS_INLINE W approxInvSqrt(W x) {
 
 enum class ClipResult { kChanged, kUnchanged, kEmpty, kOverflow, kUnsure };
 
-// The polygon is aligned to a cache line and its poles start 48 bytes into one. Where they
-// start changed the plain double search by up to 12 % on our machines (AMD Zen 2: tetrahedra
-// 137 against 155 ns per pair, frustum against spheres 148 against 170), and without the
-// alignment that depended on where the stack happened to land (the same binary was fast or
-// slow with the environment 16 bytes longer or shorter). Offsets 0 to 56 in steps of 8 and
-// poles padded to 32 bytes were all measured; only 48 was fast.
+// The polygon is aligned to a cache line and its poles start 48 bytes into one (lead_): the
+// speed of the search depends on where the poles sit relative to a cache line, and without
+// the alignment it would depend on where the stack happens to land.
 template <class W, bool Exact, bool Filter = Exact>
 class alignas(64) SphericalPolygon {
   static_assert(Filter || !Exact, "the exact policy filters its signs");
@@ -121,12 +118,10 @@ class alignas(64) SphericalPolygon {
   /// |p1|^2 |p0| sin(theta), theta the angle between the poles), and -push p1 with push =
   /// |p0|_1 |p1|_1 / 64 moves it into the lune by an angle whose tangent is 1 to 3 times
   /// 1 / (64 sin(theta)) (1-norms: no square root, no division). The direction depends only on
-  /// the poles' directions, not their lengths. When the hemisphere {w.c < 0} is
-  /// cut by q, this is the previous direction -c turned just past the new plane {w.q = 0}: against
-  /// GJK's direction (minus the point of [p0, p1] closest to the origin) it cut the mean
-  /// iterations of `dss_bench narrowphase` by 5-17 % at densities of 4-70 % on all five
-  /// workloads, and kept them at densities above 90 %. Pushing further (1/16) took more
-  /// iterations. In a lune thinner than the push (sin^2(theta) below 1/64 to 3/64 of |cos(theta)|:
+  /// the poles' directions, not their lengths. When the hemisphere {w.c < 0} is cut by q, this
+  /// is the previous direction -c turned just past the new plane {w.q = 0}, which takes fewer
+  /// plane tests than GJK's direction (minus the point of [p0, p1] closest to the origin) or a
+  /// larger push. In a lune thinner than the push (sin^2(theta) below 1/64 to 3/64 of |cos(theta)|:
   /// poles within 7 to 12 degrees of opposite) it leaves the lune; the floating-point check then
   /// hands over to centerLune.
   DSS_INLINE Vec3<W> directionLune() const {

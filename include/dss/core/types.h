@@ -8,10 +8,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-// The query loop is a handful of small functions (support, polygon update); compilers
-// sometimes leave them out of line, and the call boundary then spills every vector to memory.
-// Sanitizer builds (and DSS_NO_FORCE_INLINE) leave the choice to the compiler: forcing the
-// whole search into every shape pair's instantiation makes instrumented builds very slow.
+// The search is one function per instantiation (DSS_NOINLINE); its leaves -- supports, vector
+// arithmetic, the polygon update -- are forced inline into it (DSS_INLINE): left out of line,
+// a call boundary spills every vector to memory. Sanitizer builds (and DSS_NO_FORCE_INLINE)
+// leave the choice to the compiler, which keeps instrumented builds fast to compile.
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__) && !defined(DSS_NO_FORCE_INLINE)
 #define DSS_INLINE inline __attribute__((always_inline))
 #define DSS_NOINLINE __attribute__((noinline))
@@ -34,8 +34,8 @@ using Vec3f = Vec3<float>;
 namespace detail {
 // The query loop's vector arithmetic, written out. Eigen's fixed-size operations are plain
 // `inline` templates several layers deep; in a large translation unit GCC's inliner runs out
-// of budget and leaves some of them as calls (squaredNorm, negation, assignment), which cost
-// the loop 10-20 %. These are forced inline with the loop.
+// of budget and leaves some of them as calls (squaredNorm, negation, assignment) inside the
+// loop. These are leaves, forced inline.
 template <class T>
 DSS_INLINE T dot3(const Vec3<T>& a, const Vec3<T>& b) {
   return a.x() * b.x() + a.y() * b.y() + a.z() * b.z();

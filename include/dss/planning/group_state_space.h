@@ -61,10 +61,4 @@ class GroupStateMap {
   ompl::base::StateSpacePtr space_;
 };
 
-/// Held values of every active joint: the model's default state, then `overrides` by name
-/// (scene robot state, request start). Unknown names are skipped (returned in `ignored`).
-std::vector<double> heldState(const RobotModel& robot,
-                              const std::vector<std::map<std::string, double>>& overrides,
-                              std::vector<std::string>* ignored = nullptr);
-
 }  // namespace dss

@@ -8,6 +8,7 @@
 // ignored (they follow their leader); a value that disagrees with the leader is noted.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,5 +25,11 @@ std::vector<double> assembleState(const RobotModel& model,
                                   const std::vector<std::pair<std::string, double>>& named,
                                   const std::string& source, std::vector<std::string>* notes = nullptr,
                                   std::vector<double> base = {});
+
+/// Held values of every active joint: the model's default state, then `overrides` by name
+/// (scene robot state, request start). Unknown names are skipped (returned in `ignored`).
+std::vector<double> heldState(const RobotModel& robot,
+                              const std::vector<std::map<std::string, double>>& overrides,
+                              std::vector<std::string>* ignored = nullptr);
 
 }  // namespace dss

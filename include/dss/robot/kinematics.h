@@ -33,7 +33,6 @@ class Kinematics {
 
   /// The pose of the root link in the world (identity by default).
   void setBasePose(const Eigen::Isometry3d& X_WR) { X_WR_ = X_WR; }
-  const Eigen::Isometry3d& basePose() const { return X_WR_; }
 
   /// joint_values: one value per active joint (RobotModel::active_joints order).
   /// X_WL: one pose per link (RobotModel::links order); only updatedLinks() are written.
@@ -47,7 +46,6 @@ class Kinematics {
 
   /// Links written by computeLinkPoses, in the order they are computed.
   const std::vector<int>& updatedLinks() const { return updated_; }
-  std::size_t numLinks() const { return num_links_; }
   std::size_t numActiveJoints() const { return num_active_; }
 
  private:

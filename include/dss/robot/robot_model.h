@@ -53,7 +53,6 @@ struct RobotJoint {
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;
 
-  bool isActive() const { return active_index >= 0; }
   bool isMoving() const { return type != JointType::kFixed; }
 };
 
@@ -61,6 +60,10 @@ struct CollisionElement {
   AnyShape shape;
   Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();  ///< shape frame in the link frame
   std::string description;  ///< e.g. "link panda_link1 collision[0] mesh meshes/link1.stl"
+  /// For a mesh: the file it was read from (resolved path) and the scale applied to its
+  /// vertices; the shape is the hull of the scaled vertices. Empty for primitives.
+  std::string mesh_path;
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
 };
 
 struct RobotLink {
@@ -94,8 +97,6 @@ struct RobotModel {
   std::size_t numActiveJoints() const { return active_joints.size(); }
   std::vector<std::string> activeJointNames() const;
   std::size_t numCollisionElements() const;
-  /// Links that can move relative to the root: some joint between them and the root moves.
-  bool linkMoves(int link) const;
   /// The nearest ancestor-or-self whose parent joint moves (the root when none): links with
   /// the same rigid ancestor never move relative to each other.
   int rigidAncestor(int link) const;

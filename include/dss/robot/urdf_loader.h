@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "dss/robot/mesh_paths.h"
+#include "dss/mesh/mesh_paths.h"
 #include "dss/robot/robot_model.h"
 
 namespace dss {

@@ -41,9 +41,6 @@ struct Aabb {
   Eigen::Vector3d center() const { return 0.5 * (lower + upper); }
   /// Half of the diagonal: the radius of a ball about center() that holds the box.
   double radius() const { return 0.5 * (upper - lower).norm(); }
-  bool overlaps(const Aabb& o) const {
-    return (lower.array() <= o.upper.array()).all() && (o.lower.array() <= upper.array()).all();
-  }
 };
 
 namespace detail {

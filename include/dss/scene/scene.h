@@ -4,8 +4,7 @@
 // The readers (planning_scene_yaml.h, scene_text.h, urdf_world.h; scene_loader.h picks one by
 // extension) fill it. Obstacles placed in a robot frame (e.g. `header.frame_id: base_link`)
 // keep their pose in that frame and are flagged unresolved until resolveFrames() is given
-// the robot's frames. The obstacle list is a plain vector so that a caller can filter it
-// (e.g. drop obstacles no link can reach) with removeObstaclesIf().
+// the robot's frames.
 #pragma once
 
 #include <cstddef>
@@ -43,18 +42,6 @@ struct Scene {
   std::vector<std::string> objectIds() const;
   /// Frame ids that no obstacle could resolve yet (sorted, unique).
   std::vector<std::string> unresolvedFrames() const;
-
-  /// Removes the obstacles for which pred(obstacle) is true; returns how many were removed.
-  template <class Pred>
-  std::size_t removeObstaclesIf(Pred pred) {
-    const std::size_t before = obstacles.size();
-    std::vector<Obstacle> kept;
-    kept.reserve(before);
-    for (auto& o : obstacles)
-      if (!pred(static_cast<const Obstacle&>(o))) kept.push_back(std::move(o));
-    obstacles = std::move(kept);
-    return before - obstacles.size();
-  }
 };
 
 /// True for the names that mean the world/planning frame itself: "", "world", "/world".
@@ -65,10 +52,5 @@ bool isWorldFrame(const std::string& frame_id);
 /// whose frame is found nowhere is an error naming the file, the object and the frame;
 /// otherwise it stays unresolved.
 void resolveFrames(Scene& scene, const FrameMap& frames, bool require_all = true);
-
-/// Moves every convex-hull obstacle's vertices into world coordinates (X_WO and X_FO become
-/// the identity, frame_id the world), which lets the exact mode decide hull pairs exactly.
-/// Resolved obstacles only; the hull is rebuilt (adjacency included) from the moved points.
-void bakeHullsToWorld(Scene& scene);
 
 }  // namespace dss

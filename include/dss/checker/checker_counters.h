@@ -1,0 +1,54 @@
+// Counters of a checker: what it was asked and what it found. They are the only state a
+// checker changes while it answers, kept in per-thread slots (a cache line each, a thread's
+// slot chosen once) so that threads checking in parallel never write to the same line.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+namespace dss {
+
+struct CheckerCounters {
+  std::uint64_t checks = 0;         ///< states checked
+  std::uint64_t invalid_input = 0;  ///< of them: non-finite, or outside the model's bounds
+  std::uint64_t collisions = 0;     ///< of them: found in collision
+  std::uint64_t pair_tests = 0;     ///< narrow-phase calls
+  std::uint64_t cap_hits = 0;       ///< states with a DSS answer at the iteration cap (colliding)
+
+  /// The counts between two snapshots.
+  CheckerCounters operator-(const CheckerCounters& o) const {
+    return {checks - o.checks, invalid_input - o.invalid_input, collisions - o.collisions,
+            pair_tests - o.pair_tests, cap_hits - o.cap_hits};
+  }
+};
+
+class CounterSlots {
+ public:
+  struct alignas(64) Slot {
+    std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0}, cap_hits{0};
+    void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) { c.fetch_add(n, std::memory_order_relaxed); }
+  };
+  /// This thread's slot.
+  Slot& local() const {
+    static std::atomic<int> next{0};
+    thread_local const int index = next.fetch_add(1, std::memory_order_relaxed) % kSlots;
+    return slots_[index];
+  }
+  CheckerCounters sum() const {
+    CheckerCounters c;
+    for (const Slot& s : slots_) {
+      c.checks += s.checks.load(std::memory_order_relaxed);
+      c.invalid_input += s.invalid_input.load(std::memory_order_relaxed);
+      c.collisions += s.collisions.load(std::memory_order_relaxed);
+      c.pair_tests += s.pair_tests.load(std::memory_order_relaxed);
+      c.cap_hits += s.cap_hits.load(std::memory_order_relaxed);
+    }
+    return c;
+  }
+
+ private:
+  static constexpr int kSlots = 16;
+  mutable Slot slots_[kSlots];
+};
+
+}  // namespace dss

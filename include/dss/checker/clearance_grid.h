@@ -1,0 +1,86 @@
+// A voxel grid over the region the robot's link spheres can reach, holding for every voxel a
+// lower bound on the distance from any point of the voxel to every obstacle box of the scene,
+// in whole multiples of a quantum (2^-7 m), one byte per voxel.
+//
+// The sweep (sweep.h) asks it first for each moving link's sphere: when the bound at the
+// sphere's centre exceeds the sphere's radius plus the padding, the link is clear of every
+// obstacle and its per-obstacle tests are skipped (one lookup instead of one sphere-box test
+// per obstacle: most link spheres of a free state are settled this way). A centre outside the
+// grid, or NaN, gets no bound, and the per-obstacle tests run as before: the grid never
+// changes an answer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <Eigen/Core>
+
+#include "dss/scene/obstacle.h"
+
+namespace dss {
+
+class ClearanceGrid {
+ public:
+  static constexpr double kQuantum = 1.0 / 128;  ///< metres per step of the stored bound
+  ClearanceGrid() = default;
+  /// Covers `region` with at most about `max_voxels` cubic voxels (never smaller than
+  /// `min_voxel` m). An empty or non-finite region, or no boxes, gives an empty grid.
+  ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes, std::size_t max_voxels = std::size_t(1) << 16,
+                double min_voxel = 0.02);
+
+  /// True when every box is farther than r from c (proven; false when unknown).
+  bool clear(const Eigen::Vector3d& c, double r) const {
+    const std::uint8_t* v = voxel(c);
+    return v && *v * kQuantum > r;
+  }
+  /// The lower bound (metres) stored for the voxel of c, 0 outside the grid.
+  double bound(const Eigen::Vector3d& c) const {
+    const std::uint8_t* v = voxel(c);
+    return v ? *v * kQuantum : 0.0;
+  }
+
+  bool empty() const { return bound_.empty(); }
+  std::size_t voxels() const { return bound_.size(); }
+  double voxelSize() const { return size_; }
+  const Eigen::Vector3d& origin() const { return origin_; }
+
+ private:
+  /// f truncated to int; INT_MIN for NaN and for values out of the int range.
+  static int toIndex(double f) {
+#if defined(__SSE2__)
+    return _mm_cvttsd_si32(_mm_set_sd(f));  // the x86 conversion, defined for every input
+#else
+    return f > -2147483648.0 && f < 2147483647.0 ? static_cast<int>(f) : std::numeric_limits<int>::min();
+#endif
+  }
+  /// The voxel holding c, or null outside the grid (and for NaN).
+  const std::uint8_t* voxel(const Eigen::Vector3d& c) const {
+    // Coordinates counted from one voxel below the grid: a voxel index i + 1 in [1, n], so that
+    // one unsigned comparison per axis rejects the outside (negative, beyond n, and the
+    // INT_MIN that the conversion gives for NaN and huge values). A point within rounding of
+    // a voxel face may land in the neighbour: the stored bounds keep a margin far above that.
+    const int ix = toIndex((c.x() - below_.x()) * inv_size_);
+    const int iy = toIndex((c.y() - below_.y()) * inv_size_);
+    const int iz = toIndex((c.z() - below_.z()) * inv_size_);
+    const unsigned x = static_cast<unsigned>(ix) - 1u, y = static_cast<unsigned>(iy) - 1u,
+                   z = static_cast<unsigned>(iz) - 1u;
+    if (!((x < count_[0]) & (y < count_[1]) & (z < count_[2]))) return nullptr;
+    return &bound_[z * stride_z_ + y * stride_y_ + x];
+  }
+
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  double size_ = 0.0;
+  double inv_size_ = 0.0;
+  unsigned count_[3] = {0, 0, 0};  // voxel counts per axis (an empty grid: no point is inside)
+  Eigen::Vector3d below_ = Eigen::Vector3d::Zero();  // origin_ minus one voxel per axis
+  std::size_t stride_y_ = 0, stride_z_ = 0;
+  std::vector<std::uint8_t> bound_;
+};
+
+}  // namespace dss

@@ -1,0 +1,201 @@
+// The collision model a checker works on: a robot (links with convex elements), a planning
+// group (the joints that move), the held values of every other joint, a scene of convex
+// obstacles, and the pairs that are worth checking.
+//
+// Built once per (robot, scene, group):
+//  - links are "moving" when some group joint (or a mimic of one) lies between them and the
+//    root; the others never move relative to the world, so they are never checked against the
+//    scene, and a self pair of two non-moving links is dropped;
+//  - self pairs come from selfCollisionPairs() (adjacent, rigidly attached, SRDF-disabled and
+//    scene-ACM-allowed pairs removed);
+//  - robot-scene pairs are (moving link, obstacle) pairs the scene's ACM does not allow;
+//  - obstacle pruning: every moving link stays inside a reach ball about the origin of the
+//    first group joint above it (motion_bounds.h); obstacles whose box no such ball reaches
+//    (plus the pruning margin) are dropped.
+// The stages that the sweep (sweep.h) runs before the narrow phase each live in their own
+// file: bounding spheres and local boxes (element_bounds.h), the clearance grid
+// (clearance_grid.h), the sphere-box filter (sphere_box_filter.h), oriented boxes (obb.h),
+// inner balls (inner_balls.h), self-pair tables (self_pair_table.h), pose links
+// (pose_links.h) and pair blocks (pair_blocks.h).
+//
+// Every bound assumes the state's joints within their limits (a prismatic joint's travel,
+// motion_bounds.h) or, for joints outside the group, at their held values.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "dss/checker/clearance_grid.h"
+#include "dss/checker/obb.h"
+#include "dss/checker/pair_blocks.h"
+#include "dss/checker/self_pair_table.h"
+#include "dss/checker/sphere_box_filter.h"
+#include "dss/robot/collision_pairs.h"
+#include "dss/robot/kinematics.h"
+#include "dss/robot/robot_model.h"
+#include "dss/robot/srdf.h"
+#include "dss/scene/scene.h"
+
+namespace dss {
+
+struct CollisionModelOptions {
+  /// Drop obstacles that no moving link can reach.
+  bool prune_obstacles = true;
+  /// Margin added to the reach test (use the scene padding of the checkers).
+  double prune_margin = 0.0;
+  /// Drop self pairs of links rigidly attached to each other.
+  bool exclude_rigid = true;
+  /// Self-pair tables (self_pair_table.h): cells per joint for pairs moved by two joints (0:
+  /// no tables), and for pairs moved by one joint. A 256 x 256 table takes 64 KB.
+  int self_table_cells_2d = 256;
+  int self_table_cells_1d = 1024;
+  /// The self padding the tables certify: a checker uses them when its own self padding is
+  /// at most this.
+  double self_table_padding = 0.0;
+  /// Pair blocks (pair_blocks.h): a block keeps its ball when, on 256 random states of the
+  /// group, the ball rules it out often enough to save at least this many per-pair sphere
+  /// tests per state (the ball test itself costs about one). 0 keeps every ball.
+  double pair_block_min_saving = 1.5;
+};
+
+class CollisionModel {
+ public:
+  /// One convex collision element of a link with geometry.
+  struct Element {
+    int link = -1;                             ///< model link index
+    int slot = -1;                             ///< index into slots()
+    const CollisionElement* source = nullptr;  ///< in robot()
+    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
+    double radius = 0.0;
+    /// The local box (element_bounds.h): the oriented-box stage of the sweep.
+    Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
+    Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+    bool identity_LS = false;  ///< source->X_LS is exactly the identity (X_WS = X_WL)
+    /// The same shape pose and sphere centre in the frame of the slot's pose link (see Slot):
+    /// what the sweep uses when the held joints are at held().
+    Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
+    bool identity_PS = false;
+    Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
+    /// Inner balls (inner_balls.h): centre in the shape frame, radius.
+    static constexpr int kMaxInner = 4;
+    int num_inner = 0;
+    Eigen::Vector4d inner_S[kMaxInner];
+  };
+  /// A link with geometry.
+  struct Slot {
+    int link = -1;
+    /// Its pose link (pose_links.h) and its sphere's centre in that link's frame.
+    int pose_link = -1;
+    Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
+    bool moves = false;     ///< moves with the group
+    int first_element = 0;  ///< elements [first_element, first_element + num_elements)
+    int num_elements = 0;
+    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere of all elements
+    double radius = 0.0;
+    std::vector<int> obstacles;  ///< kept obstacles this slot is checked against
+    BoxSoa boxes;                ///< their world boxes, in the same order
+    /// Reach ball in the world (moving slots): every pose of the link stays inside.
+    Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
+    double reach_radius = 0.0;
+  };
+  struct SelfPair {
+    int a = -1, b = -1;       ///< slots
+    int table = -1;           ///< index into selfTables(), or -1
+    double radius_sum = 0.0;  ///< of the two slot spheres
+  };
+
+  /// `group_active`: active joint indices of the group (empty: every active joint).
+  /// `held`: one value per active joint of the model, used for joints outside the group (and
+  /// to place fixed frames for resolveFrames()). `scene` is taken by value: its frames are
+  /// resolved with the robot's non-moving links and its obstacles pruned. Throws on an
+  /// inconsistent input (names the scene, the object or the link).
+  CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
+                 std::vector<int> group_active, std::vector<double> held,
+                 const CollisionModelOptions& options = {});
+
+  const RobotModel& robot() const { return *robot_; }
+  /// Computes the poses of the links with geometry (others are left untouched).
+  const Kinematics& kinematics() const { return kin_; }
+  /// Computes only the slots' pose links: enough for the sweep when the state's held joints
+  /// are at held() (heldMatch()).
+  const Kinematics& sweepKinematics() const { return sweep_kin_; }
+  /// Every active joint outside the group is at its held() value (exactly; NaN never is).
+  bool heldMatch(const double* q) const {
+    for (int a : held_active_)
+      if (!(q[a] == held_[a])) return false;
+    return true;
+  }
+  /// Every value finite, every group joint within its limits (continuous joints: any value),
+  /// every joint outside the group at its held value or within its limits: the states the
+  /// model's bounds hold for.
+  bool withinBounds(const double* q) const;
+
+  const Scene& scene() const { return scene_; }  ///< kept obstacles only
+  const std::vector<int>& groupActive() const { return group_active_; }
+  const std::vector<double>& held() const { return held_; }
+  const std::vector<Element>& elements() const { return elements_; }
+  const std::vector<Slot>& slots() const { return slots_; }
+  const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
+  const SelfPairTables& selfTables() const { return self_tables_; }
+  const std::vector<PairBlock>& pairBlocks() const { return pair_blocks_; }
+  /// World boxes and oriented boxes of the kept obstacles.
+  const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
+  const std::vector<Obb>& obstacleObbs() const { return obbs_; }
+  /// Half extents of obstacle o when it is a box (centred and turned as obstacleObbs()[o]),
+  /// else negative: the inner-ball stage tests balls against it.
+  const Eigen::Vector3d& obstacleBoxHalf(int o) const { return inner_half_[o]; }
+  /// Lower bounds on the distance to the obstacle boxes over the region the moving links
+  /// reach: the first test of the sweep for each link sphere.
+  const ClearanceGrid& clearanceGrid() const { return grid_; }
+
+  std::size_t obstaclesBefore() const { return obstacles_before_; }
+  /// A lower bound on the distance of any moving link to any obstacle pruned for it
+  /// (infinity when none was pruned): clearance never exceeds what the pruning guarantees.
+  double prunedClearance() const { return pruned_gap_; }
+  std::size_t scenePairs() const { return scene_pairs_; }
+  std::size_t scenePairsBefore() const { return scene_pairs_before_; }
+  /// Self pairs tested behind a block ball first (pair_blocks.h).
+  std::size_t pairsBehindBlockBalls() const;
+  /// e.g. "kept 12 of 40 obstacles, 60 of 400 robot-scene link pairs, 21 of 55 self link pairs"
+  std::string summary() const;
+  std::vector<std::string> warnings;
+
+ private:
+  void buildSlots();
+  void placeOnPoseLinks();
+  void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
+  void buildSelfPairs(const Srdf* srdf, const CollisionModelOptions& options);
+  void pruneObstacles(const CollisionModelOptions& options);
+  void buildSelfTables(const CollisionModelOptions& options);
+
+  std::shared_ptr<const RobotModel> robot_;
+  Kinematics kin_;
+  Kinematics sweep_kin_;
+  Scene scene_;
+  std::vector<int> group_active_;
+  std::vector<double> held_;
+  std::vector<int> held_active_;  ///< active joints outside the group
+  std::vector<char> in_group_;    ///< per active joint: in the group
+  std::vector<char> moves_;       ///< per link: moves with the group
+  std::vector<Element> elements_;
+  std::vector<Slot> slots_;
+  std::vector<SelfPair> self_pairs_;
+  std::vector<PairBlock> pair_blocks_;
+  SelfPairTables self_tables_;
+  std::vector<Aabb> boxes_;
+  std::vector<Obb> obbs_;
+  std::vector<Eigen::Vector3d> inner_half_;
+  ClearanceGrid grid_;
+  SelfCollisionPairs self_report_;
+  std::size_t obstacles_before_ = 0;
+  double pruned_gap_ = std::numeric_limits<double>::infinity();
+  std::size_t scene_pairs_ = 0;
+  std::size_t scene_pairs_before_ = 0;
+};
+
+}  // namespace dss

@@ -1,0 +1,74 @@
+// A conservative continuous motion check: no collision between two states along the straight
+// joint-space motion can be missed.
+//
+// Over a sub-motion [t0, t1], every point p of a slot moves along a path p(t) with
+//   |p'|  <= V = sum over moving joints j above it of |dq_j| reach_j + sum of prismatic |dq_j|
+//   |p''| <= 4 W V,   W = sum of revolute |dq_j| above it   (dq over the sub-motion, t in [0, 1])
+// (motion_bounds.h). So p(t) lies within
+//   pad = min(V / 2, W V / 2)
+// of the chord (1 - t) p(t0) + t p(t1) (the linear-interpolation error bound |p''| / 8 for the
+// quadratic term; the nearer end point for the linear one), and every intermediate pose of an
+// element lies inside conv(X_t0(S) U X_t1(S)) grown by pad: a padded swept hull, decided by
+// DSS (dss/core/any_shape_sweep.h). The quadratic term makes the bound shrink four-fold per
+// halving once W < 1 rad.
+//
+// Work is kept per unit (element vs obstacle, element vs element of a self pair): a
+// sub-motion tests its units in order until one is not cleared; that unit and the ones not yet
+// tested are left to its two halves (the failing one first), while the units it cleared are
+// never tested again inside it. A sub-motion with units left is halved, left half first, after
+// checking its midpoint state: a colliding midpoint ends the search at once (the motion is
+// invalid). A unit still not cleared at the minimum fraction makes the motion invalid. For self
+// pairs both links are swept, ignoring the time correlation, which is conservative.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "dss/checker/dss_checker.h"
+#include "dss/checker/motion_bounds.h"
+
+namespace dss {
+
+class ContinuousMotionChecker {
+ public:
+  /// `checker` supplies the model, the paddings and the mode (and checks midpoint states).
+  /// `min_fraction` in (0, 1]: the smallest sub-motion before giving up. Throws
+  /// std::invalid_argument otherwise.
+  explicit ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker, double min_fraction = 1.0 / 1024.0);
+
+  /// True when the straight motion from q0 to q1 (active joint values) is free of collisions.
+  /// Otherwise `last_valid_fraction` (optional) receives the start of the first sub-motion that
+  /// could not be cleared: every state before it is free. States outside the model's bounds
+  /// make the motion invalid (last valid fraction 0).
+  bool clear(const double* q0, const double* q1, double* last_valid_fraction = nullptr) const;
+
+  /// The padding of each model slot over the straight motion qa -> qb (all active joints):
+  /// every point of the slot's geometry stays within pad[k] of the chord between its positions
+  /// at qa and qb. Zero for fixed slots.
+  void paddings(const double* qa, const double* qb, double* pad) const;
+
+  const DssChecker& checker() const { return *checker_; }
+  /// Sub-motions examined (each motion counts one at least) and swept tests run.
+  std::uint64_t subMotions() const { return sub_motions_.load(std::memory_order_relaxed); }
+  std::uint64_t unitTests() const { return unit_tests_.load(std::memory_order_relaxed); }
+
+ private:
+  // A unit: element `a` (model element index) against obstacle `b` (self == false) or
+  // against element `b` (self == true).
+  struct Unit {
+    int a = -1, b = -1;
+    bool self = false;
+  };
+  bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB, const double* pad,
+                 std::uint64_t* tests) const;
+
+  std::shared_ptr<const DssChecker> checker_;
+  double min_fraction_;
+  std::vector<std::vector<ChainTerm>> chains_;  ///< per slot: the joints that move it
+  std::vector<Unit> units_;                     ///< every unit of the model, in sweep order
+  mutable std::atomic<std::uint64_t> sub_motions_{0}, unit_tests_{0};
+};
+
+}  // namespace dss

@@ -1,0 +1,57 @@
+// The DSS state checker: the model's sweep with the exact DSS decision as its narrow phase.
+//
+// check(q): bounds first (non-finite or out-of-bounds values are invalid), then the self-pair
+// tables (a pair certified colliding needs no pose), then forward kinematics -- of the pose
+// links alone when the held joints are at their held values -- into per-thread scratch, then
+// the sweep, stopping at the first collision. DSS answers at the iteration cap count as
+// collisions (and are counted).
+//
+// clearance(q): a guaranteed lower bound on the distance from the robot to the scene and
+// between checked self pairs (beyond the paddings), within a tolerance: the largest extra
+// padding r, found by doubling then bisection, for which exact DSS proves every pair farther
+// apart than its padding + r.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "dss/checker/state_checker.h"
+#include "dss/core/result.h"
+
+namespace dss {
+
+struct DssCheckerSettings {
+  Options options;             ///< mode (exact by default) and iteration cap
+  double scene_padding = 0.0;  ///< "free" means distance > padding to every obstacle
+  double self_padding = 0.0;
+  bool obb_stage = true;  ///< the sweep's oriented-box stage (and inner balls)
+  /// clearance(): the returned lower bound is within this of the true clearance (metres), up
+  /// to clearance_max (returned when every pair is at least that far apart).
+  double clearance_tolerance = 1e-3;
+  double clearance_max = 10.0;
+};
+
+class DssChecker : public StateChecker {
+ public:
+  using Settings = DssCheckerSettings;
+  explicit DssChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings = {});
+
+  StateVerdict check(const double* q) const override;
+  std::string name() const override { return "dss"; }
+  const Settings& settings() const { return settings_; }
+
+  /// 0 for a colliding or invalid state, else a lower bound on the clearance within
+  /// settings().clearance_tolerance (capped at settings().clearance_max and at what the
+  /// model's obstacle pruning guarantees).
+  double clearance(const double* q) const;
+
+ private:
+  /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
+  /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
+  bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip, double scene_padding,
+                  double self_padding) const;
+
+  Settings settings_;
+};
+
+}  // namespace dss

@@ -1,0 +1,46 @@
+// A collision checker for robot states, with no planner attached: it owns a collision model
+// and answers for one vector of active joint values at a time. DSS (dss_checker.h) and FCL
+// (fcl_checker.h) implement it on the same model; the OMPL adapters
+// (dss/planning/validity_checker.h) hold one.
+//
+// Checkers are const and thread-safe: any number of threads may ask one checker at once (the
+// only state they change is their counters, and per-thread scratch that stops allocating once
+// a thread has warmed up). A state with a non-finite value, or outside the model's bounds
+// (CollisionModel::withinBounds), is invalid: never "free", never a crash.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "dss/checker/checker_counters.h"
+#include "dss/checker/collision_model.h"
+
+namespace dss {
+
+enum class StateVerdict { kFree, kColliding, kInvalidInput };
+
+class StateChecker {
+ public:
+  virtual ~StateChecker() = default;
+
+  /// The verdict for one state: q holds one value per active joint of the robot (held joints
+  /// included). Counted.
+  virtual StateVerdict check(const double* q) const = 0;
+  /// Colliding or invalid: what a planner must avoid.
+  bool collides(const double* q) const { return check(q) != StateVerdict::kFree; }
+
+  /// "dss", "fcl-hull", "fcl-mesh".
+  virtual std::string name() const = 0;
+  const CollisionModel& model() const { return *model_; }
+  CheckerCounters counters() const { return counters_.sum(); }
+
+ protected:
+  explicit StateChecker(std::shared_ptr<const CollisionModel> model) : model_(std::move(model)) {}
+  const CounterSlots& counterSlots() const { return counters_; }
+
+ private:
+  std::shared_ptr<const CollisionModel> model_;
+  CounterSlots counters_;
+};
+
+}  // namespace dss

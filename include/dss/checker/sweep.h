@@ -1,0 +1,186 @@
+// The sweep: every pair of a state that the model keeps, through the cheap stages first, and
+// the narrow phase (a callback: DSS, FCL) only for the element pairs that survive them. It
+// stops at the first collision.
+//
+// Robot vs scene, per moving slot: the clearance grid (one lookup proves the slot's sphere
+// clear of every obstacle), the sphere-box filter (two obstacle boxes at a time), each
+// element's sphere against the box, the oriented-box stage, the inner-ball stage (a ball
+// inside the element within the padding of a box obstacle proves a collision), the narrow
+// phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
+// (self_pair_table.h), the slots' spheres, the elements' spheres, the oriented-box stage, the
+// narrow phase. Every stage is conservative: it skips a pair only when the pair is proved
+// apart (beyond the padding) and reports a collision only when one is proved.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "dss/checker/collision_model.h"
+#include "dss/checker/inner_balls.h"
+#include "dss/checker/obb.h"
+
+namespace dss {
+
+struct SweepOptions {
+  double scene_padding = 0.0;  ///< a robot-scene pair collides at distance <= this
+  double self_padding = 0.0;   ///< a self pair collides at distance <= this
+  bool obb_stage = true;       ///< the oriented-box stage
+  /// The inner-ball stage: only for a narrow phase that sees the elements' own shapes (hulls,
+  /// not the meshes inside them). Self pairs never use it (their collisions are mostly
+  /// decided by the tables).
+  bool inner_balls = false;
+};
+
+/// Where the sweep takes a slot's pose from.
+enum class SweepPoses {
+  kOwnLinks,  ///< X_WL holds every slot's own link (CollisionModel::kinematics())
+  kPoseLinks  ///< X_WL holds the pose links only (sweepKinematics()): the state's held
+              ///< joints must be at held() (heldMatch())
+};
+
+/// Sweeps the pairs of one state: true at the first collision.
+///   scene(element, X_WS, obstacle) -> bool collides
+///   self(element_a, X_WA, element_b, X_WB) -> bool collides
+/// `table_skip`: one flag per self-pair table (SelfPairTables::read for the state): a flagged
+/// table's pair is certified free and skipped.
+template <SweepPoses kPoses, class SceneNarrow, class SelfNarrow>
+bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const unsigned char* table_skip,
+           const SweepOptions& opt, SceneNarrow&& scene, SelfNarrow&& self);
+
+/// The whole check of one state q (active joint values) with the link poses of
+/// model.kinematics() in X_WL: the tables first, then the sweep. (Checkers do the same with the
+/// pose links alone when heldMatch(q).)
+template <class SceneNarrow, class SelfNarrow>
+bool anyCollision(const CollisionModel& model, const double* q, const Eigen::Isometry3d* X_WL,
+                  const SweepOptions& opt, SceneNarrow&& scene, SelfNarrow&& self) {
+  thread_local std::vector<unsigned char> skip;
+  if (skip.size() < model.selfTables().size()) skip.resize(model.selfTables().size());
+  if (model.selfTables().read(q, model.heldMatch(q), opt.self_padding, skip.data())) return true;
+  return sweep<SweepPoses::kOwnLinks>(model, X_WL, skip.data(), opt, scene, self);
+}
+
+namespace detail {
+/// The pose of element e's shape given the pose X of its slot's pose link (kPoseLinks) or of its
+/// own link: X itself when the shape frame is the identity there, else the product, written
+/// into `scratch`.
+template <SweepPoses kPoses>
+const Eigen::Isometry3d& placedShape(const Eigen::Isometry3d& X, const CollisionModel::Element& e,
+                                     Eigen::Isometry3d& scratch) {
+  constexpr bool kFolded = kPoses == SweepPoses::kPoseLinks;
+  if (kFolded ? e.identity_PS : e.identity_LS) return X;
+  scratch = X * (kFolded ? e.X_PS : e.source->X_LS);
+  return scratch;
+}
+}  // namespace detail
+
+template <SweepPoses kPoses, class SceneNarrow, class SelfNarrow>
+bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const unsigned char* skip,
+           const SweepOptions& opt, SceneNarrow&& scene, SelfNarrow&& self) {
+  using Slot = CollisionModel::Slot;
+  using Element = CollisionModel::Element;
+  constexpr bool kFolded = kPoses == SweepPoses::kPoseLinks;
+  auto linkOf = [](const Slot& s) { return kFolded ? s.pose_link : s.link; };
+  auto slotCenter = [](const Slot& s) -> const Eigen::Vector3d& { return kFolded ? s.center_P : s.center_L; };
+  auto elementCenter = [](const Element& e) -> const Eigen::Vector3d& { return kFolded ? e.center_P : e.center_L; };
+  const double scene_padding = opt.scene_padding, self_padding = opt.self_padding;
+  const std::vector<Element>& elements = model.elements();
+  const std::vector<Aabb>& boxes = model.obstacleBoxes();
+  const std::vector<Obb>& obbs = model.obstacleObbs();
+  const ClearanceGrid& grid = model.clearanceGrid();
+  // World centres of the slot spheres, once per state (per-thread scratch, no allocation after
+  // the first call with a model this size). The vector and the slot count are read once:
+  // inside the loops the compiler would reload both after every store.
+  thread_local std::vector<Eigen::Vector3d> center_store;
+  const std::size_t num_slots = model.slots().size();
+  if (center_store.size() < num_slots) center_store.resize(num_slots);
+  Eigen::Vector3d* const centers = center_store.data();
+  const Slot* const slots = model.slots().data();
+  for (std::size_t k = 0; k < num_slots; ++k) {
+    const Eigen::Isometry3d& X = X_WL[linkOf(slots[k])];
+    centers[k] = X.linear() * slotCenter(slots[k]) + X.translation();
+  }
+  // Robot vs scene.
+  for (std::size_t k = 0; k < num_slots; ++k) {
+    const Slot& s = slots[k];
+    const std::size_t nb = s.obstacles.size();
+    if (nb == 0) continue;
+    const Eigen::Isometry3d& X = X_WL[linkOf(s)];
+    const Eigen::Vector3d& c = centers[k];
+    const double r = s.radius + scene_padding;
+    if (grid.clear(c, r)) continue;
+    for (std::size_t begin = 0; begin < nb; begin += 64) {
+      const std::size_t n = std::min<std::size_t>(64, nb - begin);
+      for (std::uint64_t hits = s.boxes.hits(begin, n, c, r * r); hits; hits &= hits - 1) {
+        const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
+        const int o = s.obstacles[i];
+        for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+          const Element& el = elements[e];
+          if (s.num_elements > 1) {
+            const double re = el.radius + scene_padding;
+            if (detail::sqDistPointAabb(X * elementCenter(el), boxes[o]) > re * re) continue;
+          }
+          Eigen::Isometry3d X_prod;
+          const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
+          if (opt.obb_stage) {
+            const Obb& ob = obbs[o];
+            if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h, scene_padding))
+              continue;
+          }
+          if (opt.inner_balls && el.num_inner > 0) {
+            const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
+            if (half.x() >= 0.0) {
+              const Obb& ob = obbs[o];
+              for (int b = 0; b < el.num_inner; ++b)
+                if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half, scene_padding))
+                  return true;
+            }
+          }
+          if (scene(e, X_WS, o)) return true;
+        }
+      }
+    }
+  }
+  // Self pairs, block by block.
+  const CollisionModel::SelfPair* const pairs = model.selfPairs().data();
+  for (const PairBlock& blk : model.pairBlocks()) {
+    if (kFolded && blk.anchor >= 0) {  // the held joints at held(): see pair_blocks.h
+      const double r = blk.radius + slots[blk.a].radius + self_padding;
+      if ((centers[blk.a] - X_WL[blk.anchor].translation()).squaredNorm() > r * r) continue;
+    }
+    for (const CollisionModel::SelfPair* pair = pairs + blk.begin; pair != pairs + blk.end; ++pair) {
+      const CollisionModel::SelfPair& p = *pair;
+      if (p.table >= 0 && skip[p.table]) continue;
+      const double r = p.radius_sum + self_padding;
+      if ((centers[p.a] - centers[p.b]).squaredNorm() > r * r) continue;
+      const Slot& sa = slots[p.a];
+      const Slot& sb = slots[p.b];
+      const Eigen::Isometry3d& XA = X_WL[linkOf(sa)];
+      const Eigen::Isometry3d& XB = X_WL[linkOf(sb)];
+      const bool single = sa.num_elements == 1 && sb.num_elements == 1;
+      for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
+        const Element& a = elements[ea];
+        Eigen::Isometry3d X_prod_a;
+        const Eigen::Isometry3d& X_WA = detail::placedShape<kPoses>(XA, a, X_prod_a);
+        for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
+          const Element& b = elements[eb];
+          if (!single) {
+            const double rr = a.radius + b.radius + self_padding;
+            if ((XA * elementCenter(a) - XB * elementCenter(b)).squaredNorm() > rr * rr) continue;
+          }
+          Eigen::Isometry3d X_prod_b;
+          const Eigen::Isometry3d& X_WB = detail::placedShape<kPoses>(XB, b, X_prod_b);
+          if (opt.obb_stage && obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
+                                        X_WB * b.box_center_S, b.box_half, self_padding))
+            continue;
+          if (self(ea, X_WA, eb, X_WB)) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace dss

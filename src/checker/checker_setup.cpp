@@ -1,0 +1,79 @@
+// Checker setup from files (see checker_setup.h).
+#include "dss/checker/checker_setup.h"
+
+#include <stdexcept>
+
+#include "dss/checker/dss_checker.h"
+#include "dss/checker/fcl_checker.h"
+#include "dss/robot/joint_state.h"
+#include "dss/robot/urdf_loader.h"
+
+namespace dss {
+
+LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path) {
+  LoadedRobot r;
+  r.model = std::make_shared<const RobotModel>(loadUrdf(urdf_path));
+  if (!srdf_path.empty()) {
+    r.srdf = loadSrdf(srdf_path);
+    const auto problems = checkSrdfAgainstModel(*r.model, *r.srdf);
+    if (!problems.empty()) throw std::runtime_error(srdf_path + ": " + problems.front());
+  }
+  return r;
+}
+
+std::vector<int> resolveGroup(const LoadedRobot& robot, std::string* group) {
+  if (robot.srdf) {
+    if (group->empty() && !robot.srdf->groups.empty()) *group = robot.srdf->groups.front().name;
+    if (!group->empty()) return groupActiveJoints(*robot.model, *robot.srdf, *group);
+  } else if (!group->empty()) {
+    throw std::runtime_error("group '" + *group + "' given without an SRDF");
+  }
+  std::vector<int> all;
+  for (std::size_t i = 0; i < robot.model->numActiveJoints(); ++i) all.push_back(int(i));
+  return all;
+}
+
+ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
+                      const std::map<std::string, double>& start, double prune_margin) {
+  ModelSetup s;
+  s.group_active = resolveGroup(robot, &group);
+  s.group = group;
+  std::vector<std::string> ignored;
+  s.held = heldState(*robot.model, {scene.robot_state, start}, &ignored);
+  for (const auto& n : ignored)
+    if (n != "virtual_joint")
+      s.warnings.push_back("joint " + n + " of the scene/request is not an active joint of the robot: ignored");
+  CollisionModelOptions options;
+  options.prune_margin = prune_margin;
+  auto model = std::make_shared<CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, std::move(scene),
+                                                s.group_active, s.held, options);
+  for (const auto& w : model->warnings) s.warnings.push_back(w);
+  s.model = std::move(model);
+  return s;
+}
+
+std::shared_ptr<const StateChecker> makeStateChecker(std::shared_ptr<const CollisionModel> model,
+                                                     const CheckerConfig& c) {
+  if (c.checker == "dss") {
+    DssCheckerSettings s;
+    s.options = c.dss_options;
+    s.obb_stage = c.obb_stage;
+    s.scene_padding = c.scene_padding;
+    s.self_padding = c.self_padding;
+    return std::make_shared<const DssChecker>(std::move(model), s);
+  }
+  if (c.checker == "fcl-hull" || c.checker == "fcl-mesh") {
+    if (c.fcl_prefilter != "aabb" && c.fcl_prefilter != "shared")
+      throw std::invalid_argument("unknown FCL prefilter '" + c.fcl_prefilter + "' (expected aabb or shared)");
+    FclCheckerSettings s;
+    s.geometry = c.checker == "fcl-hull" ? FclGeometry::kHull : FclGeometry::kMesh;
+    s.prefilter = c.fcl_prefilter == "aabb" ? FclPrefilter::kAabb : FclPrefilter::kShared;
+    s.scene_padding = c.scene_padding;
+    s.self_padding = c.self_padding;
+    s.obb_stage = c.obb_stage;
+    return std::make_shared<const FclChecker>(std::move(model), s);
+  }
+  throw std::invalid_argument("unknown checker '" + c.checker + "' (expected dss, fcl-hull or fcl-mesh)");
+}
+
+}  // namespace dss

@@ -1,0 +1,289 @@
+// CollisionModel: slots and elements, pose links, reach balls and pruning, self pairs and
+// their tables and blocks (see the header).
+#include "dss/checker/collision_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "dss/checker/element_bounds.h"
+#include "dss/checker/inner_balls.h"
+#include "dss/checker/motion_bounds.h"
+#include "dss/checker/pose_links.h"
+
+namespace dss {
+
+CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
+                               std::vector<int> group_active, std::vector<double> held,
+                               const CollisionModelOptions& options)
+    : robot_(std::move(robot)),
+      kin_(*robot_, /*all_links=*/false),
+      sweep_kin_(*robot_, /*all_links=*/false),
+      scene_(std::move(scene)),
+      group_active_(std::move(group_active)),
+      held_(std::move(held)) {
+  const RobotModel& m = *robot_;
+  if (held_.size() != m.numActiveJoints())
+    throw std::invalid_argument("CollisionModel: held state has " + std::to_string(held_.size()) +
+                                " values, robot " + m.name + " has " + std::to_string(m.numActiveJoints()) +
+                                " active joints");
+  if (group_active_.empty())
+    for (std::size_t i = 0; i < m.numActiveJoints(); ++i) group_active_.push_back(int(i));
+  in_group_.assign(m.numActiveJoints(), 0);
+  for (int a : group_active_) in_group_.at(a) = 1;
+  for (std::size_t a = 0; a < m.numActiveJoints(); ++a)
+    if (!in_group_[a]) held_active_.push_back(int(a));
+
+  // Which links move with the group (parents come before children in model order).
+  moves_.assign(m.links.size(), 0);
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const RobotLink& link = m.links[l];
+    if (link.parent_joint < 0) continue;
+    const RobotJoint& j = m.joints[link.parent_joint];
+    const int lead = j.active_index >= 0 ? j.active_index : j.mimic_active;
+    moves_[l] = moves_[link.parent_link] || (lead >= 0 && in_group_[lead]);
+  }
+
+  // Link poses at the held state: frames for the scene, pivots for the reach balls.
+  const std::vector<Eigen::Isometry3d> X_WL = Kinematics(m, /*all_links=*/true).linkPoses(held_);
+  FrameMap frames;
+  for (std::size_t l = 0; l < m.links.size(); ++l)
+    if (!moves_[l]) frames[m.links[l].name] = X_WL[l];
+  resolveFrames(scene_, frames, /*require_all=*/true);
+
+  buildSlots();
+  computeReach(X_WL);
+  placeOnPoseLinks();
+  buildSelfPairs(srdf, options);
+  pruneObstacles(options);
+  buildSelfTables(options);
+  pair_blocks_ = buildPairBlocks(*this, options.pair_block_min_saving);
+}
+
+bool CollisionModel::withinBounds(const double* q) const {
+  const RobotModel& m = *robot_;
+  for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
+    if (!std::isfinite(q[a])) return false;
+    const RobotJoint& j = m.joints[m.active_joints[a]];
+    if (j.type == JointType::kContinuous || !j.limits.has_position_limits) continue;
+    if (!in_group_[a] && q[a] == held_[a]) continue;
+    if (!(q[a] >= j.limits.lower && q[a] <= j.limits.upper)) return false;
+  }
+  return true;
+}
+
+void CollisionModel::buildSlots() {
+  const RobotModel& m = *robot_;
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const RobotLink& link = m.links[l];
+    if (!link.hasGeometry()) continue;
+    Slot s;
+    s.link = int(l);
+    s.moves = moves_[l];
+    s.first_element = int(elements_.size());
+    s.num_elements = int(link.collisions.size());
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (const auto& ce : link.collisions) {
+      Element e;
+      e.link = int(l);
+      e.slot = int(slots_.size());
+      e.source = &ce;
+      elementSphere(ce.shape, ce.X_LS, &e.center_L, &e.radius);
+      localBox(ce.shape, &e.box_center_S, &e.box_half);
+      e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
+      e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, Element::kMaxInner);
+      lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
+      hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
+      elements_.push_back(e);
+    }
+    s.center_L = 0.5 * (lo + hi);
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
+      s.radius = std::max(s.radius, (elements_[e].center_L - s.center_L).norm() + elements_[e].radius);
+    slots_.push_back(s);
+  }
+}
+
+void CollisionModel::placeOnPoseLinks() {
+  const RobotModel& m = *robot_;
+  const PoseLinks p = poseLinks(m, kin_, held_, in_group_);
+  std::vector<char> wanted(m.links.size(), 0);
+  wanted[m.root_link] = 1;
+  for (Slot& s : slots_) {
+    s.pose_link = p.pose_of[s.link];
+    wanted[s.pose_link] = 1;
+    const Eigen::Isometry3d& X = p.X_PL[s.link];
+    s.center_P = X * s.center_L;
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+      Element& el = elements_[e];
+      el.X_PS = X * el.source->X_LS;
+      el.identity_PS = el.X_PS.matrix() == Eigen::Matrix4d::Identity();
+      el.center_P = X * el.center_L;
+    }
+  }
+  sweep_kin_ = Kinematics(m, wanted);
+}
+
+void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
+  const RobotModel& m = *robot_;
+  for (Slot& s : slots_) {
+    if (!s.moves) continue;
+    // The first joint from the root that moves with the group: its origin is fixed in the world
+    // (it turns about it) or slides along its axis by at most its travel.
+    const std::vector<ChainTerm> chain = chainAbove(m, s.link, -1, s.center_L.norm() + s.radius, held_);
+    const ChainTerm* first = nullptr;
+    for (const ChainTerm& t : chain)
+      if (moves_[m.joints[t.joint].child_link] && !moves_[m.joints[t.joint].parent_link]) first = &t;
+    if (!first) continue;  // cannot happen: a moving link has a moving joint above it
+    const RobotJoint& j0 = m.joints[first->joint];
+    s.reach_center_W = X_WL[j0.parent_link] * j0.X_PJ.translation();
+    const double r = first->reach + prismaticTravel(m, j0, held_);
+    s.reach_radius = r * (1.0 + 1e-9) + 1e-9;
+  }
+}
+
+void CollisionModel::buildSelfPairs(const Srdf* srdf, const CollisionModelOptions& options) {
+  const RobotModel& m = *robot_;
+  // The robot library's selection plus the scene's allowed link pairs.
+  std::vector<std::pair<std::string, std::string>> allowed;
+  for (const auto& p : scene_.allowed_collisions.pairs())
+    if (m.linkIndex(p.first) >= 0 && m.linkIndex(p.second) >= 0) allowed.push_back(p);
+  for (const auto& name : scene_.allowed_collisions.alwaysAllowed())
+    if (m.linkIndex(name) >= 0)
+      for (const auto& link : m.links)
+        if (link.name != name && link.hasGeometry()) allowed.emplace_back(name, link.name);
+  self_report_ = selfCollisionPairs(m, srdf, allowed, options.exclude_rigid);
+  std::vector<int> slot_of(m.links.size(), -1);
+  for (std::size_t s = 0; s < slots_.size(); ++s) slot_of[slots_[s].link] = int(s);
+  for (const auto& [a, b] : self_report_.pairs) {
+    if (!moves_[a] && !moves_[b]) continue;  // their relative pose never changes
+    if (slot_of[a] < 0 || slot_of[b] < 0) continue;
+    self_pairs_.push_back({slot_of[a], slot_of[b], -1, slots_[slot_of[a]].radius + slots_[slot_of[b]].radius});
+  }
+}
+
+void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
+  const RobotModel& m = *robot_;
+  obstacles_before_ = scene_.obstacles.size();
+  std::vector<Aabb> boxes;
+  for (const auto& o : scene_.obstacles) boxes.push_back(worldAabb(o));
+  std::vector<char> keep(scene_.obstacles.size(), 0);
+  std::vector<std::vector<int>> slot_obstacles(slots_.size());
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    if (!slots_[s].moves) continue;
+    const std::string& lname = m.links[slots_[s].link].name;
+    for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) {
+      if (scene_.allowed_collisions.allowed(lname, scene_.obstacles[o].object_id)) continue;
+      ++scene_pairs_before_;
+      if (options.prune_obstacles) {
+        const double r = slots_[s].reach_radius + options.prune_margin;
+        const double d2 = detail::sqDistPointAabb(slots_[s].reach_center_W, boxes[o]);
+        if (std::isfinite(r) && d2 > r * r) {
+          // Pruned: the link never comes closer than this to the obstacle.
+          pruned_gap_ = std::min(pruned_gap_, (std::sqrt(d2) - slots_[s].reach_radius) * (1.0 - 1e-9));
+          continue;
+        }
+      }
+      keep[o] = 1;
+      slot_obstacles[s].push_back(int(o));
+    }
+    // Nearest obstacles first (from the joint the link turns about): a colliding state is most
+    // often caught by them, so the sweep stops early.
+    const Eigen::Vector3d c = slots_[s].reach_center_W;
+    if (c.allFinite()) {
+      std::stable_sort(slot_obstacles[s].begin(), slot_obstacles[s].end(), [&](int a, int b) {
+        return detail::sqDistPointAabb(c, boxes[a]) < detail::sqDistPointAabb(c, boxes[b]);
+      });
+    }
+  }
+  std::vector<int> new_index(scene_.obstacles.size(), -1);
+  std::vector<Obstacle> kept;
+  for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) {
+    if (!keep[o]) continue;
+    new_index[o] = int(kept.size());
+    kept.push_back(std::move(scene_.obstacles[o]));
+    boxes_.push_back(boxes[o]);
+    Obb b;
+    const Obstacle& ob = kept.back();
+    Eigen::Vector3d c_S;
+    localBox(ob.shape, &c_S, &b.h);
+    b.R = ob.X_WO.linear();
+    b.c = ob.X_WO * c_S;
+    obbs_.push_back(b);
+    const auto* box = std::get_if<Box>(&ob.shape);
+    inner_half_.push_back(box ? box->half : Eigen::Vector3d::Constant(-1.0));
+  }
+  scene_.obstacles = std::move(kept);
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    Slot& slot = slots_[s];
+    std::vector<Aabb> slot_boxes;
+    for (int o : slot_obstacles[s]) {
+      slot.obstacles.push_back(new_index[o]);
+      slot_boxes.push_back(boxes_[new_index[o]]);
+    }
+    slot.boxes = BoxSoa(slot_boxes);
+    scene_pairs_ += slot.obstacles.size();
+  }
+  // The clearance grid covers the reach balls of the links checked against the scene.
+  Aabb region;
+  region.lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  region.upper = -region.lower;
+  for (const Slot& slot : slots_)
+    if (!slot.obstacles.empty() && std::isfinite(slot.reach_radius) && slot.reach_center_W.allFinite()) {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(slot.reach_radius);
+      region.lower = region.lower.cwiseMin(slot.reach_center_W - r);
+      region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
+    }
+  grid_ = ClearanceGrid(region, boxes_);
+}
+
+void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
+  if (options.self_table_cells_2d <= 0 && options.self_table_cells_1d <= 0) return;
+  auto side = [&](int s) {
+    SelfPairSide side;
+    side.link = slots_[s].link;
+    for (int e = slots_[s].first_element; e < slots_[s].first_element + slots_[s].num_elements; ++e)
+      side.elements.push_back(elements_[e].source);
+    side.radius = slots_[s].center_L.norm() + slots_[s].radius;
+    return side;
+  };
+  std::vector<SelfPairTable> tables;
+  for (SelfPair& pair : self_pairs_) {
+    std::optional<SelfPairTable> t =
+        buildSelfPairTable(*robot_, kin_, held_, in_group_, side(pair.a), side(pair.b), options.self_table_cells_1d,
+                           options.self_table_cells_2d, options.self_table_padding);
+    if (!t) continue;
+    pair.table = int(tables.size());
+    tables.push_back(std::move(*t));
+  }
+  std::vector<int> new_index;
+  self_tables_ = SelfPairTables(std::move(tables), options.self_table_padding, &new_index);
+  for (SelfPair& pair : self_pairs_)
+    if (pair.table >= 0) pair.table = new_index[pair.table];
+}
+
+std::size_t CollisionModel::pairsBehindBlockBalls() const {
+  std::size_t n = 0;
+  for (const PairBlock& b : pair_blocks_) n += b.anchor >= 0 ? static_cast<std::size_t>(b.end - b.begin) : 0;
+  return n;
+}
+
+std::string CollisionModel::summary() const {
+  std::ostringstream os;
+  std::size_t moving = 0;
+  for (const auto& s : slots_) moving += s.moves;
+  os << "kept " << scene_.obstacles.size() << " of " << obstacles_before_ << " obstacles, " << scene_pairs_ << " of "
+     << scene_pairs_before_ << " robot-scene link pairs, " << self_pairs_.size() << " of " << self_report_.all_pairs
+     << " self link pairs (" << moving << " of " << slots_.size() << " links with geometry move)";
+  if (self_tables_.size() > 0) {
+    std::size_t cells = 0, free = 0, colliding = 0;
+    for (const auto& t : self_tables_.tables())
+      cells += t.cell_state.size(), free += t.num_free, colliding += t.num_colliding;
+    os << ", " << self_tables_.size() << " self-pair tables (of " << cells << " cells " << free
+       << " certified free, " << colliding << " colliding)";
+  }
+  return os.str();
+}
+
+}  // namespace dss

@@ -1,0 +1,78 @@
+// Kinematic motion bounds (see motion_bounds.h).
+#include "dss/checker/motion_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dss {
+
+namespace {
+// Largest |value| over a joint's limits and its held value (infinity without limits).
+double valueRange(const RobotJoint& j, double held) {
+  if (!j.limits.has_position_limits) return std::numeric_limits<double>::infinity();
+  return std::max({std::abs(j.limits.lower), std::abs(j.limits.upper), std::abs(held)});
+}
+}  // namespace
+
+double prismaticTravel(const RobotModel& robot, const RobotJoint& j, const std::vector<double>& held) {
+  if (j.type != JointType::kPrismatic) return 0.0;
+  if (j.active_index >= 0) return valueRange(j, held[j.active_index]);
+  if (j.mimic_active >= 0) {
+    const int lead = j.mimic_active;
+    const RobotJoint& leader = robot.joints[robot.active_joints[lead]];
+    // |m v + o| <= |m| |v| + |o| for every value v of the leader (its held value included).
+    return std::abs(j.mimic_multiplier) * valueRange(leader, held[lead]) + std::abs(j.mimic_offset);
+  }
+  return 0.0;
+}
+
+double originOffsetBound(const RobotModel& robot, int link, int stop, const std::vector<double>& held) {
+  double d = 0.0;
+  for (int l = link; l != stop && robot.links[l].parent_joint >= 0; l = robot.links[l].parent_link) {
+    const RobotJoint& j = robot.joints[robot.links[l].parent_joint];
+    d += j.X_PJ.translation().norm() + prismaticTravel(robot, j, held);
+  }
+  return d;
+}
+
+std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, double radius,
+                                  const std::vector<double>& held, double* reach_at_stop) {
+  std::vector<ChainTerm> out;
+  double reach = radius;
+  for (int l = link; l != stop && robot.links[l].parent_joint >= 0; l = robot.links[l].parent_link) {
+    const RobotJoint& j = robot.joints[robot.links[l].parent_joint];
+    if (j.isMoving()) {
+      ChainTerm t;
+      t.joint = robot.links[l].parent_joint;
+      t.active = j.active_index;
+      if (t.active < 0 && j.mimic_active >= 0) {
+        t.active = j.mimic_active;
+        t.multiplier = j.mimic_multiplier;
+      }
+      t.prismatic = j.type == JointType::kPrismatic;
+      t.reach = reach;
+      out.push_back(t);
+    }
+    reach += j.X_PJ.translation().norm() + prismaticTravel(robot, j, held);
+  }
+  if (reach_at_stop) *reach_at_stop = reach;
+  return out;
+}
+
+MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1) {
+  MotionBound b;
+  for (const ChainTerm& t : chain) {
+    if (t.active < 0) continue;
+    const double dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
+    if (t.prismatic) {
+      b.length += dq;
+    } else {
+      b.length += dq * t.reach;
+      b.turn += dq;
+    }
+  }
+  return b;
+}
+
+}  // namespace dss

@@ -1,0 +1,210 @@
+// Self-pair tables: building, packing and reading (see self_pair_table.h).
+#include "dss/checker/self_pair_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dss/checker/motion_bounds.h"
+#include "dss/core/any_shape_query.h"
+
+namespace dss {
+
+namespace {
+std::vector<int> ancestors(const RobotModel& m, int link) {
+  std::vector<int> out;
+  for (int l = link; l >= 0; l = m.links[l].parent_link) out.push_back(l);
+  return out;
+}
+}  // namespace
+
+std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinematics& kin,
+                                                const std::vector<double>& held, const std::vector<char>& in_group,
+                                                const SelfPairSide& sa, const SelfPairSide& sb, int cells_1d,
+                                                int cells_2d, double padding) {
+  const std::vector<int> up_a = ancestors(m, sa.link), up_b = ancestors(m, sb.link);
+  int common = -1;
+  for (int l : up_a)
+    if (std::find(up_b.begin(), up_b.end(), l) != up_b.end()) {
+      common = l;
+      break;
+    }
+  if (common < 0) return std::nullopt;
+  // Bounds on how far a point of B moves (relative to A) per unit change of each joint on the
+  // path between them: B-side joints turn B about their origins; an A-side joint turns B (rigid
+  // to the common ancestor for that joint's motion) about its own origin, which lies within
+  // the origin offsets between it and the common ancestor.
+  struct Term {
+    const ChainTerm* chain;
+    double per_unit;
+  };
+  double reach_b = 0.0;  // B's geometry from the common ancestor's origin
+  const std::vector<ChainTerm> path_b = chainAbove(m, sb.link, common, sb.radius, held, &reach_b);
+  const std::vector<ChainTerm> path_a = chainAbove(m, sa.link, common, 0.0, held);
+  std::vector<Term> terms;
+  for (const ChainTerm& t : path_b) terms.push_back({&t, t.prismatic ? 1.0 : t.reach});
+  for (const ChainTerm& t : path_a)
+    terms.push_back({&t, t.prismatic ? 1.0 : originOffsetBound(m, m.joints[t.joint].child_link, common, held) + reach_b});
+
+  // Variables: the group joints the path joints read (mimic joints through their leader).
+  // Joints outside the group keep their held value: the table records it and answers only for
+  // states that have it.
+  SelfPairTable t;
+  double per_var[2] = {0.0, 0.0};
+  for (const Term& term : terms) {
+    const int v = term.chain->active;
+    if (v < 0 || !std::isfinite(term.per_unit)) return std::nullopt;
+    if (!in_group[v]) {
+      int f = 0;
+      while (f < t.num_fixed && t.fixed_var[f] != v) ++f;
+      if (f == t.num_fixed) {
+        if (t.num_fixed == SelfPairTable::kMaxFixed) return std::nullopt;
+        t.fixed_var[t.num_fixed] = v;
+        t.fixed_value[t.num_fixed++] = held[v];
+      }
+      continue;
+    }
+    int k = 0;
+    while (k < t.num_vars && t.var[k] != v) ++k;
+    if (k == t.num_vars) {
+      if (t.num_vars == 2) return std::nullopt;
+      t.var[t.num_vars++] = v;
+    }
+    per_var[k] += std::abs(term.chain->multiplier) * term.per_unit;
+  }
+  if (t.num_vars == 0) return std::nullopt;
+  const int n = t.num_vars == 1 ? cells_1d : cells_2d;
+  if (n <= 0) return std::nullopt;
+  const double pi = 3.141592653589793;
+  for (int k = 0; k < t.num_vars; ++k) {
+    const RobotJoint& L = m.joints[m.active_joints[t.var[k]]];
+    if (L.type == JointType::kContinuous || (L.type == JointType::kRevolute && !L.limits.has_position_limits)) {
+      t.wrap[k] = true;
+      t.lo[k] = -pi;
+      t.hi[k] = pi;
+    } else if (L.limits.has_position_limits && L.limits.lower < L.limits.upper) {
+      t.lo[k] = L.limits.lower;
+      t.hi[k] = L.limits.upper;
+    } else {
+      return std::nullopt;
+    }
+    t.cells[k] = n;
+    t.inv_width[k] = double(n) / (t.hi[k] - t.lo[k]);
+  }
+  t.padding = padding;
+  t.cell_state.assign(std::size_t(t.cells[0]) * std::size_t(t.cells[1]), SelfPairTable::kUnknown);
+
+  std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
+  std::vector<double> q = held;
+  Options exact;
+  exact.mode = Mode::kExact;
+  // Certify the block [i0, i1) x [j0, j1) of cells; split it until its cells are decided.
+  const double width[2] = {(t.hi[0] - t.lo[0]) / t.cells[0], t.num_vars > 1 ? (t.hi[1] - t.lo[1]) / t.cells[1] : 0.0};
+  auto certify = [&](auto&& self, int i0, int i1, int j0, int j1) -> void {
+    double moved = 0.0;
+    const int lo_idx[2] = {i0, j0}, hi_idx[2] = {i1, j1};
+    for (int k = 0; k < t.num_vars; ++k) {
+      const double a = t.lo[k] + lo_idx[k] * width[k];
+      const double b = hi_idx[k] == t.cells[k] ? t.hi[k] : t.lo[k] + hi_idx[k] * width[k];
+      q[t.var[k]] = 0.5 * (a + b);
+      // Half-width, grown so that a value whose cell index rounds into this block is covered.
+      const double half = 0.5 * (b - a) * (1.0 + 1e-6) + 1e-12 * (1.0 + std::abs(b) + std::abs(a));
+      moved += per_var[k] * half;
+    }
+    kin.computeLinkPoses(q.data(), X.data());
+    const double pad = t.padding + moved * (1.0 + 1e-9) + 1e-12;
+    auto mark = [&](unsigned char value) {
+      for (int i = i0; i < i1; ++i)
+        for (int j = j0; j < j1; ++j) t.cell_state[std::size_t(i) * t.cells[1] + j] = value;
+    };
+    // Free: every element pair farther apart than pad.
+    bool free = true;
+    for (std::size_t ea = 0; ea < sa.elements.size() && free; ++ea)
+      for (std::size_t eb = 0; eb < sb.elements.size() && free; ++eb) {
+        const CollisionElement& A = *sa.elements[ea];
+        const CollisionElement& B = *sb.elements[eb];
+        free = !intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad).intersect;
+      }
+    if (free) return mark(SelfPairTable::kFree);
+    // Colliding: some element pair intersects under the six translations by sqrt(3) L (and a
+    // 1e-9 margin for the rounding of the poses) along the axes, hence under any motion within
+    // the cell. (At a self padding above the table's, colliding stays colliding.)
+    const double reach = std::sqrt(3.0) * (moved * (1.0 + 1e-9) + 1e-9);
+    for (const CollisionElement* A : sa.elements)
+      for (const CollisionElement* B : sb.elements) {
+        const Eigen::Isometry3d XA = X[sa.link] * A->X_LS;
+        bool all = true;
+        for (int axis = 0; axis < 6 && all; ++axis) {
+          Eigen::Isometry3d XB = X[sb.link] * B->X_LS;
+          XB.translation()[axis / 2] += (axis % 2 ? -reach : reach);
+          all = intersect(A->shape, XA, B->shape, XB, exact).intersect;
+        }
+        if (all) return mark(SelfPairTable::kColliding);
+      }
+    if (i1 - i0 <= 1 && j1 - j0 <= 1) return;
+    const int im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1;
+    const int jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
+    self(self, i0, im, j0, jm);
+    if (jm < j1) self(self, i0, im, jm, j1);
+    if (im < i1) {
+      self(self, im, i1, j0, jm);
+      if (jm < j1) self(self, im, i1, jm, j1);
+    }
+  };
+  certify(certify, 0, t.cells[0], 0, t.cells[1]);
+  for (unsigned char c : t.cell_state) {
+    t.num_free += c == SelfPairTable::kFree;
+    t.num_colliding += c == SelfPairTable::kColliding;
+  }
+  if (t.num_free == 0 && t.num_colliding == 0) return std::nullopt;
+  return t;
+}
+
+SelfPairTables::SelfPairTables(std::vector<SelfPairTable> tables, double padding, std::vector<int>* new_index)
+    : padding_(padding) {
+  // Tables on the same grid next to each other, at most four per group.
+  new_index->assign(tables.size(), -1);
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    if ((*new_index)[i] >= 0) continue;
+    Group g;
+    g.first = int(tables_.size());
+    for (std::size_t j = i; j < tables.size() && g.count < 4; ++j) {
+      if ((*new_index)[j] >= 0 || (j != i && !tables[j].sameGrid(tables_[g.first]))) continue;
+      (*new_index)[j] = int(tables_.size());
+      tables_.push_back(std::move(tables[j]));
+      ++g.count;
+    }
+    g.packed.assign(tables_[g.first].cell_state.size(), 0);
+    for (int k = 0; k < g.count; ++k) {
+      const std::vector<unsigned char>& cells = tables_[g.first + k].cell_state;
+      for (std::size_t c = 0; c < cells.size(); ++c) g.packed[c] |= static_cast<std::uint8_t>(cells[c] << (2 * k));
+    }
+    groups_.push_back(std::move(g));
+  }
+}
+
+bool SelfPairTables::read(const double* q, bool held_match, double self_padding, unsigned char* skip,
+                          bool colliding_cells) const {
+  const bool use_colliding = colliding_cells && self_padding >= padding_, use_free = self_padding <= padding_;
+  for (const Group& g : groups_) {
+    const int idx = tables_[g.first].index(q);
+    const unsigned byte = idx < 0 ? 0u : g.packed[idx];
+    if (held_match) {
+      // Every table was built at the held values: a cell applies as it is, and the two-bit
+      // cells of a group are read as masks.
+      if (use_colliding && colliding(byte)) return true;
+      const unsigned f = use_free ? free(byte) : 0u;
+      for (int k = 0; k < g.count; ++k) skip[g.first + k] = (f >> (2 * k)) & 1u;
+      continue;
+    }
+    for (int k = 0; k < g.count; ++k) {
+      const int ti = g.first + k;
+      const unsigned c = (byte >> (2 * k)) & 3u;
+      const bool applies = c != SelfPairTable::kUnknown && tables_[ti].heldMatch(q);
+      if (c == SelfPairTable::kColliding && applies && use_colliding) return true;
+      skip[ti] = c == SelfPairTable::kFree && applies && use_free;
+    }
+  }
+  return false;
+}
+
+}  // namespace dss

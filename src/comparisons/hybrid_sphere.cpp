@@ -1,0 +1,6 @@
+// The Hybrid on AnyShape with a sphere first (see comparisons_dispatch.h).
+#include "comparisons_dispatch.h"
+
+namespace dss::detail {
+DSS_INSTANTIATE_COMPARISON(Comparison::kHybrid, Sphere)
+}  // namespace dss::detail

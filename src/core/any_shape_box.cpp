@@ -1,0 +1,6 @@
+// The decisions on AnyShape with a box first (see any_shape_dispatch.h).
+#include "any_shape_dispatch.h"
+
+namespace dss::detail {
+DSS_ANY_SHAPE_INSTANCES(, Box)
+}  // namespace dss::detail

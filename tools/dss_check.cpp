@@ -1,0 +1,363 @@
+// dss_check: validity of robot states (CSV, or uniform random ones) against a scene with one
+// or several checkers. stdout: 1/0 per state for the first checker; stderr: one JSON summary
+// per checker (states, valid, median microseconds per state over repetitions, disagreements
+// against the first checker). --describe prints the model as JSON instead.
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "cli.h"
+#include "dss/checker/fcl_checker.h"
+#include "dss/planning/planning_problem.h"
+#include "dss/scene/scene_loader.h"
+
+namespace {
+
+// Option ranges (as dss_plan's): paddings in metres, seeds for OMPL's 32-bit seed generator.
+constexpr double kMaxPadding = 1e3;
+constexpr long long kMaxCount = 1000000000;
+constexpr long long kMaxSeed = 4294967295;  // OMPL seeds are 32-bit
+constexpr long long kMaxThreads = 1024;
+
+const char* kUsage =
+    "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
+    "                 (--states FILE.csv | --random N [--seed S])\n"
+    "                 [--checker dss|fcl-hull|fcl-mesh[:sweep][,...]] [--padding r] [--self-padding r]\n"
+    "                 [--repeat K] [--describe]\n"
+    "                 [--mode exact|double|float] [--no-obb-stage] [--threads N]\n"
+    "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
+    "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
+    "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n";
+
+struct Csv {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream is(s);
+  while (std::getline(is, cur, sep)) {
+    const auto b = cur.find_first_not_of(" \t\r");
+    const auto e = cur.find_last_not_of(" \t\r");
+    out.push_back(b == std::string::npos ? "" : cur.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+Csv readCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  Csv csv;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    auto cells = split(line, ',');
+    if (csv.names.empty()) {
+      csv.names = cells;
+      for (const auto& n : csv.names)
+        if (n.empty()) throw std::runtime_error(path + ":" + std::to_string(lineno) + ": empty joint name in header");
+      continue;
+    }
+    if (cells.size() != csv.names.size())
+      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": " + std::to_string(cells.size()) +
+                               " values, header has " + std::to_string(csv.names.size()));
+    std::vector<double> row;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      char* end = nullptr;
+      const double v = std::strtod(cells[i].c_str(), &end);
+      if (cells[i].empty() || *end != '\0')
+        throw std::runtime_error(path + ":" + std::to_string(lineno) + ": column " + csv.names[i] +
+                                 ": '" + cells[i] + "' is not a number");
+      row.push_back(v);  // NaN/inf are accepted: such states are invalid, not input errors
+    }
+    csv.rows.push_back(std::move(row));
+  }
+  if (csv.names.empty()) throw std::runtime_error(path + ": no header line");
+  return csv;
+}
+
+nlohmann::json describe(const dss::Problem& p) {
+  using nlohmann::json;
+  const dss::CollisionModel& m = *p.model;
+  const dss::RobotModel& r = m.robot();
+  json j;
+  j["robot"] = r.name;
+  j["group"] = p.group;
+  j["group_joints"] = p.map->jointNames();
+  json links = json::array();
+  for (const auto& s : m.slots()) {
+    json l;
+    l["name"] = r.links[s.link].name;
+    l["moves"] = s.moves;
+    l["pose_link"] = r.links[s.pose_link].name;  // the link whose pose places it in a query
+    l["bounding_radius"] = s.radius;
+    if (s.moves) l["reach_radius"] = s.reach_radius;
+    json els = json::array();
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+      const auto& ce = *m.elements()[e].source;
+      json x;
+      x["shape"] = dss::shapeTypeName(ce.shape);
+      x["description"] = ce.description;
+      if (const auto* h = std::get_if<dss::ConvexHull>(&ce.shape)) x["hull_vertices"] = h->size();
+      const auto& el = m.elements()[e];
+      json balls = json::array();  // inner balls (shape frame): x, y, z, radius
+      for (int k = 0; k < el.num_inner; ++k)
+        balls.push_back({el.inner_S[k].x(), el.inner_S[k].y(), el.inner_S[k].z(), el.inner_S[k].w()});
+      x["inner_balls"] = balls;
+      els.push_back(x);
+    }
+    l["elements"] = els;
+    l["obstacles_checked"] = s.obstacles.size();
+    links.push_back(l);
+  }
+  j["links"] = links;
+  json joints = json::array();
+  for (const auto& jt : r.joints) {
+    json x;
+    x["name"] = jt.name;
+    x["type"] = dss::toString(jt.type);
+    if (jt.limits.has_position_limits) x["limits"] = {jt.limits.lower, jt.limits.upper};
+    joints.push_back(x);
+  }
+  j["joints"] = joints;
+  json obs = json::array();
+  for (const auto& o : m.scene().obstacles) obs.push_back({{"name", o.name}, {"shape", dss::describeShape(o.shape)}});
+  j["obstacles_kept"] = obs;
+  j["obstacles_total"] = m.obstaclesBefore();
+  json pairs = json::array();
+  for (const auto& sp : m.selfPairs())
+    pairs.push_back({r.links[m.slots()[sp.a].link].name, r.links[m.slots()[sp.b].link].name});
+  j["self_pairs"] = pairs;
+  const dss::ClearanceGrid& grid = m.clearanceGrid();
+  j["clearance_grid"] = {{"voxels", grid.voxels()}, {"voxel_size", grid.voxelSize()},
+                         {"origin", {grid.origin().x(), grid.origin().y(), grid.origin().z()}}};
+  j["robot_scene_pairs"] = m.scenePairs();
+  j["robot_scene_pairs_total"] = m.scenePairsBefore();
+  j["summary"] = m.summary();
+  j["warnings"] = p.warnings;
+  return j;
+}
+
+int run(int argc, char** argv) {
+  std::string robot, srdf, scene_path, group, states, checkers = "dss";
+  double padding = 0.0, self_padding = 0.0;
+  long random_n = 0;
+  unsigned long seed = 1;
+  int repeat = 0;
+  bool do_describe = false;
+  std::string mode = "exact";
+  bool box_stage = true;
+  int threads = 1;
+  dss::cli::ArgCursor cli(argc, argv, "dss_check", kUsage);
+  while (cli.next()) {
+    if (cli.option("--robot")) robot = cli.value();
+    else if (cli.option("--srdf")) srdf = cli.value();
+    else if (cli.option("--scene")) scene_path = cli.value();
+    else if (cli.option("--group")) group = cli.value();
+    else if (cli.option("--states")) states = cli.value();
+    else if (cli.option("--checker")) checkers = cli.value();
+    else if (cli.option("--padding")) padding = cli.number(0, kMaxPadding);
+    else if (cli.option("--self-padding")) self_padding = cli.number(0, kMaxPadding);
+    else if (cli.option("--random")) random_n = cli.integer(1, kMaxCount);
+    else if (cli.option("--seed")) seed = static_cast<unsigned long>(cli.integer(0, kMaxSeed));
+    else if (cli.option("--repeat")) repeat = static_cast<int>(cli.integer(0, kMaxCount));
+    else if (cli.flag("--describe")) do_describe = true;
+    else if (cli.option("--mode")) {
+      mode = cli.value();
+      if (mode != "exact" && mode != "double" && mode != "float")
+        cli.error("--mode: expected exact, double or float, got '" + mode + "'");
+    } else if (cli.flag("--no-obb-stage")) box_stage = false;
+    else if (cli.option("--threads")) threads = static_cast<int>(cli.integer(1, kMaxThreads));
+    else cli.unknown();
+  }
+  if (robot.empty()) cli.error("--robot is required");
+  if (!do_describe && states.empty() && random_n <= 0) cli.error("--states or --random is required");
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::RNG::setSeed(seed);
+
+  const dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  dss::Scene scene;
+  if (!scene_path.empty()) scene = dss::loadScene(scene_path);
+  Csv csv;
+  if (!states.empty()) csv = readCsv(states);
+  if (group.empty() && !states.empty() && !r.srdf) group = "";
+  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, padding);
+  for (const auto& w : p.warnings) std::cerr << "dss_check: warning: " << w << "\n";
+  if (do_describe) {
+    std::cout << describe(p).dump(2) << "\n";
+    return 0;
+  }
+
+  // States as OMPL states of the group space.
+  const auto& names = p.map->jointNames();
+  std::vector<ompl::base::State*> st;
+  if (!states.empty()) {
+    std::vector<int> column(names.size(), -1);
+    for (std::size_t c = 0; c < csv.names.size(); ++c) {
+      auto it = std::find(names.begin(), names.end(), csv.names[c]);
+      if (it == names.end()) {
+        if (r.model->jointIndex(csv.names[c]) < 0)
+          throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of " + robot);
+        throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of group '" +
+                                 p.group + "'");
+      }
+      column[it - names.begin()] = int(c);
+    }
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (column[i] < 0) throw std::runtime_error(states + ": header lacks group joint '" + names[i] + "'");
+    std::vector<double> g(names.size());
+    for (const auto& row : csv.rows) {
+      for (std::size_t i = 0; i < names.size(); ++i) g[i] = row[column[i]];
+      auto* s = p.si->allocState();
+      p.map->fromGroupValues(g.data(), s);
+      st.push_back(s);
+    }
+  } else {
+    auto sampler = p.si->allocStateSampler();
+    for (long i = 0; i < random_n; ++i) {
+      auto* s = p.si->allocState();
+      sampler->sampleUniform(s);
+      st.push_back(s);
+    }
+  }
+
+  std::vector<std::string> names_list;
+  {
+    std::istringstream is(checkers);
+    std::string c;
+    while (std::getline(is, c, ',')) names_list.push_back(c);
+  }
+  if (repeat <= 0) repeat = st.size() >= 10000 ? 5 : st.size() >= 1000 ? 11 : 31;
+  // Every checker is built first; then the repetitions run interleaved (checker 1, 2, ...,
+  // then again), after one untimed warm-up pass each, so that a slow phase of a shared machine
+  // hits every checker alike and the ratios of medians stay meaningful.
+  std::vector<std::shared_ptr<dss::ValidityChecker>> built;
+  for (std::size_t k = 0; k < names_list.size(); ++k) {
+    dss::CheckerConfig cfg;
+    cfg.checker = names_list[k];
+    // "fcl-hull:sweep": FCL behind the DSS checker's own sphere/oriented-box sweep instead of
+    // FCL's world AABBs.
+    if (cfg.checker.size() > 6 && cfg.checker.compare(cfg.checker.size() - 6, 6, ":sweep") == 0 &&
+        cfg.checker.rfind("fcl-", 0) == 0) {
+      cfg.checker.resize(cfg.checker.size() - 6);
+      cfg.fcl_prefilter = "shared";
+    }
+    cfg.scene_padding = padding;
+    cfg.self_padding = self_padding;
+    if (mode == "exact") cfg.dss_options.mode = dss::Mode::kExact;
+    else if (mode == "double") cfg.dss_options.mode = dss::Mode::kDouble;
+    else cfg.dss_options.mode = dss::Mode::kFloat;  // checked when parsed
+    cfg.obb_stage = box_stage;
+    auto checker = dss::makeValidityChecker(p, cfg);
+    built.push_back(checker);
+  }
+  const std::size_t nc = built.size();
+  std::vector<std::vector<char>> valid(nc, std::vector<char>(st.size()));
+  std::vector<std::vector<double>> per_state(nc), per_state_wall(nc);
+  const double n = double(std::max<std::size_t>(1, st.size()));
+  for (int rep = -1; rep < repeat; ++rep) {
+    for (std::size_t k = 0; k < nc; ++k) {
+      const dss::ValidityChecker& checker = *built[k];
+      std::vector<char>& v = valid[k];
+      const auto t0 = std::chrono::steady_clock::now();
+      const double c0 = threadCpuSeconds();
+      if (threads <= 1) {
+        for (std::size_t i = 0; i < st.size(); ++i) v[i] = checker.isValid(st[i]);
+      } else {
+        // Contiguous blocks per thread (no false sharing on `valid` except at block edges).
+        std::vector<std::thread> pool;
+        const std::size_t block = (st.size() + threads - 1) / threads;
+        for (int t = 0; t < threads; ++t)
+          pool.emplace_back([&, t] {
+            const std::size_t b = std::min(st.size(), t * block), e = std::min(st.size(), b + block);
+            for (std::size_t i = b; i < e; ++i) v[i] = checker.isValid(st[i]);
+          });
+        for (auto& th : pool) th.join();
+      }
+      const double c1 = threadCpuSeconds();
+      const auto t1 = std::chrono::steady_clock::now();
+      if (rep < 0) continue;  // warm-up
+      // With threads, only wall time means anything.
+      per_state[k].push_back(threads <= 1 ? (c1 - c0) * 1e6 / n
+                                          : std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
+      per_state_wall[k].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
+    }
+  }
+  // Per repetition, each checker's time over the first checker's, taken in the same
+  // repetition a few milliseconds apart: the median of these paired ratios follows the speed
+  // ratio even when the machine changes speed between repetitions.
+  std::vector<double> paired_ratio(nc, 0.0);
+  for (std::size_t k = 1; k < nc; ++k) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < per_state[k].size() && i < per_state[0].size(); ++i)
+      if (per_state[0][i] > 0.0) r.push_back(per_state[k][i] / per_state[0][i]);
+    std::sort(r.begin(), r.end());
+    if (!r.empty()) paired_ratio[k] = r.size() % 2 ? r[r.size() / 2] : 0.5 * (r[r.size() / 2 - 1] + r[r.size() / 2]);
+  }
+  for (std::size_t k = 0; k < nc; ++k) {
+    const auto& checker = built[k];
+    std::sort(per_state[k].begin(), per_state[k].end());
+    std::sort(per_state_wall[k].begin(), per_state_wall[k].end());
+    const auto c = checker->counters();
+    nlohmann::json j;
+    j["checker"] = names_list[k];
+    if (checker->checker().name() == "dss") j["mode"] = mode;
+    j["states"] = st.size();
+    j["valid"] = std::count(valid[k].begin(), valid[k].end(), 1);
+    j["us_per_state"] = per_state[k].empty() ? 0.0 : per_state[k][per_state[k].size() / 2];
+    j["us_per_state_wall"] = per_state_wall[k].empty() ? 0.0 : per_state_wall[k][per_state_wall[k].size() / 2];
+    j["us_per_state_min"] = per_state[k].empty() ? 0.0 : per_state[k].front();
+    j["timer"] = threads <= 1 ? "thread CPU time (wall time in us_per_state_wall)" : "wall time";
+    j["threads"] = threads;
+    j["repetitions"] = repeat;
+    j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
+    j["cap_hits"] = c.cap_hits;
+    j["model"] = p.model->summary();
+    if (const auto* f = dynamic_cast<const dss::FclChecker*>(&checker->checker())) {
+      j["solver"] = dss::FclChecker::solverDescription();
+      j["prefilter"] = f->prefilterName();
+    }
+    if (k == 0) {
+      for (char v : valid[0]) std::cout << (v ? 1 : 0) << "\n";
+    } else {
+      std::size_t dis = 0;
+      for (std::size_t i = 0; i < valid[k].size(); ++i) dis += valid[k][i] != valid[0][i];
+      j["disagreements"] = dis;
+      j["paired_ratio_to_first"] = paired_ratio[k];
+    }
+    std::cerr << j.dump() << "\n";
+  }
+  for (auto* s : st) p.si->freeState(s);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "dss_check: " << e.what() << "\n";
+    return 1;
+  }
+}
