@@ -9,7 +9,9 @@
 namespace {
 
 void printUsage(std::FILE* out) {
-  std::fprintf(out, "usage: dss_bench <subcommand> [options]   (dss_bench <subcommand> --help)\n\nsubcommands:\n");
+  std::fprintf(out,
+               "usage: dss_bench <subcommand> [options]   (dss_bench <subcommand> "
+               "--help)\n\nsubcommands:\n");
   for (const auto& [name, sub] : dss::bench::subcommands())
     std::fprintf(out, "  %-14s %s\n", name.c_str(), sub.summary.c_str());
 }
@@ -21,7 +23,8 @@ int main(int argc, char** argv) {
     printUsage(stderr);
     return 2;
   }
-  if (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+  if (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+      !std::strcmp(argv[1], "help")) {
     printUsage(stdout);
     return 0;
   }

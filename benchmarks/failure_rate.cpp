@@ -13,11 +13,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "dss/core/convex_hull.h"
 #include "dss/core/dss.h"
@@ -86,7 +85,8 @@ FailureConfig parseFailureArgs(int argc, char** argv) {
       std::size_t start = 0;
       while (start <= s.size()) {
         const std::size_t end = s.find(',', start);
-        c.sigmas.push_back(std::stod(s.substr(start, end == std::string::npos ? std::string::npos : end - start)));
+        c.sigmas.push_back(
+            std::stod(s.substr(start, end == std::string::npos ? std::string::npos : end - start)));
         if (end == std::string::npos) break;
         start = end + 1;
       }
@@ -122,7 +122,7 @@ struct Tally {
   long long iterations = 0;
   int max_iterations = 0;
   double seconds = 0;
-  int dumped = 0;                 // pairs printed by --dump
+  int dumped = 0;                    // pairs printed by --dump
   std::vector<long long> histogram;  // pairs by support evaluations, 0..cap
 
   void add(const Result& r, bool truth) {
@@ -141,8 +141,10 @@ struct Tally {
 
 int runFailureRate(int argc, char** argv) {
   const FailureConfig cfg = parseFailureArgs(argc, argv);
-  std::printf("dss_bench failure-rate: %lld pairs per spread, float, cap %d, batches of %d tetrahedra, seed %llu\n",
-              cfg.pairs, cfg.max_iterations, cfg.batch, (unsigned long long)cfg.seed);
+  std::printf(
+      "dss_bench failure-rate: %lld pairs per spread, float, cap %d, batches of %d tetrahedra, "
+      "seed %llu\n",
+      cfg.pairs, cfg.max_iterations, cfg.batch, (unsigned long long)cfg.seed);
   std::ofstream json_file;
   if (!cfg.json.empty()) {
     json_file.open(cfg.json);
@@ -151,7 +153,8 @@ int runFailureRate(int argc, char** argv) {
   for (double sigma : cfg.sigmas) {
     const auto start = Clock::now();
     std::vector<Tally> tallies;
-    for (const char* name : {"dss-float", "gjk-float", "hybrid-float", "dss-double", "gjk-double"}) {
+    for (const char* name :
+         {"dss-float", "gjk-float", "hybrid-float", "dss-double", "gjk-double"}) {
       if (!cfg.with_double && std::string(name).find("double") != std::string::npos) continue;
       Tally t;
       t.name = name;
@@ -192,18 +195,23 @@ int runFailureRate(int argc, char** argv) {
           const auto [i, j] = w.pairs[k];
           Result r;
           if (opt.mode == Mode::kFloat) {
-            r = dss ? intersect(hulls_f[i], hulls_f[j], opt)
-                    : gjk ? intersectGjk(hulls_f[i], hulls_f[j], opt) : intersectHybrid(hulls_f[i], hulls_f[j], opt);
+            r = dss   ? intersect(hulls_f[i], hulls_f[j], opt)
+                : gjk ? intersectGjk(hulls_f[i], hulls_f[j], opt)
+                      : intersectHybrid(hulls_f[i], hulls_f[j], opt);
           } else {
-            r = dss ? intersect(hulls[i], hulls[j], opt)
-                    : gjk ? intersectGjk(hulls[i], hulls[j], opt) : intersectHybrid(hulls[i], hulls[j], opt);
+            r = dss   ? intersect(hulls[i], hulls[j], opt)
+                : gjk ? intersectGjk(hulls[i], hulls[j], opt)
+                      : intersectHybrid(hulls[i], hulls[j], opt);
           }
           t.add(r, truth[k]);
-          if (t.dumped < cfg.dump && !gjk && (r.status == Status::kIterationLimit || r.intersect != truth[k])) {
+          if (t.dumped < cfg.dump && !gjk &&
+              (r.status == Status::kIterationLimit || r.intersect != truth[k])) {
             ++t.dumped;
-            std::fprintf(stderr, "%s: batch %llu pair (%d, %d) sigma %g: answer %d exact %d status %s iterations %d\n",
-                         t.name.c_str(), (unsigned long long)batch, i, j, sigma, int(r.intersect), int(truth[k]),
-                         toString(r.status), r.iterations);
+            std::fprintf(stderr,
+                         "%s: batch %llu pair (%d, %d) sigma %g: answer %d exact %d status %s "
+                         "iterations %d\n",
+                         t.name.c_str(), (unsigned long long)batch, i, j, sigma, int(r.intersect),
+                         int(truth[k]), toString(r.status), r.iterations);
             for (int side : {i, j}) {
               std::fprintf(stderr, "  tetrahedron %d:", side);
               for (const auto& v : w.a_polytopes[side].vertices)
@@ -218,10 +226,10 @@ int runFailureRate(int argc, char** argv) {
     }
     const double total = std::chrono::duration<double>(Clock::now() - start).count();
     const double density = double(intersecting) / double(done);
-    std::printf("\nsigma %g: %lld pairs, density %.2f %% (exact), %.1f s (reference %.1f s)\n", sigma, done,
-                100 * density, total, reference_seconds);
-    std::printf("  %-13s %12s %12s %10s %10s %10s %8s %8s %9s\n", "algo", "cap_hits", "cap_rate", "wrong",
-                "wrong_int", "wrong_dec", "mean_it", "max_it", "ns/pair");
+    std::printf("\nsigma %g: %lld pairs, density %.2f %% (exact), %.1f s (reference %.1f s)\n",
+                sigma, done, 100 * density, total, reference_seconds);
+    std::printf("  %-13s %12s %12s %10s %10s %10s %8s %8s %9s\n", "algo", "cap_hits", "cap_rate",
+                "wrong", "wrong_int", "wrong_dec", "mean_it", "max_it", "ns/pair");
     nlohmann::json line;
     line["benchmark"] = "failure-rate";
     line["command"] = cfg.command;
@@ -238,9 +246,9 @@ int runFailureRate(int argc, char** argv) {
     if (!cfg.note.empty()) line["note"] = cfg.note;
     for (const auto& t : tallies) {
       const double ns = 1e9 * t.seconds / double(done);
-      std::printf("  %-13s %12lld %12.3g %10lld %10lld %10lld %8.3f %8d %9.1f\n", t.name.c_str(), t.cap_hits,
-                  double(t.cap_hits) / double(done), t.wrong, t.wrong_intersect, t.wrong_decided,
-                  double(t.iterations) / double(done), t.max_iterations, ns);
+      std::printf("  %-13s %12lld %12.3g %10lld %10lld %10lld %8.3f %8d %9.1f\n", t.name.c_str(),
+                  t.cap_hits, double(t.cap_hits) / double(done), t.wrong, t.wrong_intersect,
+                  t.wrong_decided, double(t.iterations) / double(done), t.max_iterations, ns);
       line["algos"].push_back({{"algo", t.name},
                                {"cap_hits", t.cap_hits},
                                {"cap_rate", double(t.cap_hits) / double(done)},
@@ -262,9 +270,10 @@ int runFailureRate(int argc, char** argv) {
 
 }  // namespace
 
-DSS_BENCH_SUBCOMMAND("failure-rate",
-                     "long run: cap hits and wrong answers of DSS, GJK, Hybrid in float on random tetrahedra",
-                     runFailureRate);
+DSS_BENCH_SUBCOMMAND(
+    "failure-rate",
+    "long run: cap hits and wrong answers of DSS, GJK, Hybrid in float on random tetrahedra",
+    runFailureRate);
 
 }  // namespace bench
 }  // namespace dss

@@ -13,6 +13,9 @@
 //                                      same support functions as DSS, through callbacks
 // FCL runs with its default solver (GST_LIBCCD: libccd MPR for convex pairs, 500 iterations,
 // tolerance eps^(7/8)); libccd runs with the same iteration cap and tolerance.
+#include <ccd/ccd.h>
+#include <fcl/fcl.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,13 +26,10 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <ccd/ccd.h>
-#include <fcl/fcl.h>
-#include <nlohmann/json.hpp>
 
 #include "dss/core/convex_hull.h"
 #include "dss/core/dss.h"
@@ -152,7 +152,8 @@ Config parseArgs(int argc, char** argv) {
     if (!reps_given) c.reps = 2;
     c.sweep_vertices = {8, 16, 32, 64};
   }
-  if (c.n < 2 || c.reps < 1 || c.max_iterations < 1) throw std::runtime_error("--n >= 2, --reps >= 1, --max-iterations >= 1");
+  if (c.n < 2 || c.reps < 1 || c.max_iterations < 1)
+    throw std::runtime_error("--n >= 2, --reps >= 1, --max-iterations >= 1");
   return c;
 }
 
@@ -175,8 +176,8 @@ struct Algorithm {
 using Pairs = std::vector<std::pair<int, int>>;
 
 template <class F>
-PassStats decisionPass(const Pairs& pairs, std::size_t begin, std::size_t end, std::uint8_t* answers,
-                       F&& decide) {
+PassStats decisionPass(const Pairs& pairs, std::size_t begin, std::size_t end,
+                       std::uint8_t* answers, F&& decide) {
   PassStats s;
   for (std::size_t k = begin; k < end; ++k) {
     const Result r = decide(pairs[k].first, pairs[k].second);
@@ -218,38 +219,50 @@ const double kCcdTolerance = std::pow(std::numeric_limits<double>::epsilon(), 7.
 
 /// DSS (three modes), GJK, Hybrid and libccd on shapes A, B (double) and Af, Bf (float).
 template <class A, class B, class Af, class Bf>
-void addSupportAlgorithms(std::vector<Algorithm>& algos, const Pairs& pairs, const std::vector<A>& a,
-                          const std::vector<B>& b, const std::vector<Af>& af, const std::vector<Bf>& bf,
-                          int max_iterations, const std::string& suffix = "") {
+void addSupportAlgorithms(std::vector<Algorithm>& algos, const Pairs& pairs,
+                          const std::vector<A>& a, const std::vector<B>& b,
+                          const std::vector<Af>& af, const std::vector<Bf>& bf, int max_iterations,
+                          const std::string& suffix = "") {
   auto dss = [&, max_iterations](Mode mode) {
-    return [&pairs, &a, &b, mode, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
-      Options opt;
-      opt.mode = mode;
-      opt.max_iterations = max_iterations;
-      return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersect(a[i], b[j], opt); });
-    };
+    return
+        [&pairs, &a, &b, mode, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
+          Options opt;
+          opt.mode = mode;
+          opt.max_iterations = max_iterations;
+          return decisionPass(pairs, k0, k1, ans,
+                              [&](int i, int j) { return intersect(a[i], b[j], opt); });
+        };
   };
   algos.push_back({"dss-exact" + suffix, true, dss(Mode::kExact)});
   algos.push_back({"dss-double" + suffix, true, dss(Mode::kDouble)});
   if (!suffix.empty()) return;  // variants (e.g. the sweep's linear scan) only time DSS
-  algos.push_back({"dss-float", true, [&pairs, &af, &bf, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
-                     Options opt;
-                     opt.mode = Mode::kFloat;
-                     opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersect(af[i], bf[j], opt); });
-                   }});
-  algos.push_back({"gjk", true, [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
-                     Options opt;
-                     opt.mode = Mode::kDouble;
-                     opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersectGjk(a[i], b[j], opt); });
-                   }});
-  algos.push_back({"hybrid", true, [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
-                     Options opt;
-                     opt.mode = Mode::kDouble;
-                     opt.max_iterations = max_iterations;
-                     return decisionPass(pairs, k0, k1, ans, [&](int i, int j) { return intersectHybrid(a[i], b[j], opt); });
-                   }});
+  algos.push_back(
+      {"dss-float", true,
+       [&pairs, &af, &bf, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
+         Options opt;
+         opt.mode = Mode::kFloat;
+         opt.max_iterations = max_iterations;
+         return decisionPass(pairs, k0, k1, ans,
+                             [&](int i, int j) { return intersect(af[i], bf[j], opt); });
+       }});
+  algos.push_back(
+      {"gjk", true,
+       [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
+         Options opt;
+         opt.mode = Mode::kDouble;
+         opt.max_iterations = max_iterations;
+         return decisionPass(pairs, k0, k1, ans,
+                             [&](int i, int j) { return intersectGjk(a[i], b[j], opt); });
+       }});
+  algos.push_back(
+      {"hybrid", true,
+       [&pairs, &a, &b, max_iterations](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
+         Options opt;
+         opt.mode = Mode::kDouble;
+         opt.max_iterations = max_iterations;
+         return decisionPass(pairs, k0, k1, ans,
+                             [&](int i, int j) { return intersectHybrid(a[i], b[j], opt); });
+       }});
   auto ccd = [&](bool mpr) {
     return [&pairs, &a, &b, mpr](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
       ccd_t c;
@@ -261,8 +274,10 @@ void addSupportAlgorithms(std::vector<Algorithm>& algos, const Pairs& pairs, con
       c.max_iterations = kCcdMaxIterations;
       c.mpr_tolerance = kCcdTolerance;
       if (mpr)
-        return boolPass(pairs, k0, k1, ans, [&](int i, int j) { return ccdMPRIntersect(&a[i], &b[j], &c) == 1; });
-      return boolPass(pairs, k0, k1, ans, [&](int i, int j) { return ccdGJKIntersect(&a[i], &b[j], &c) == 1; });
+        return boolPass(pairs, k0, k1, ans,
+                        [&](int i, int j) { return ccdMPRIntersect(&a[i], &b[j], &c) == 1; });
+      return boolPass(pairs, k0, k1, ans,
+                      [&](int i, int j) { return ccdGJKIntersect(&a[i], &b[j], &c) == 1; });
     };
   };
   algos.push_back({"ccd-gjk", false, ccd(false)});
@@ -276,14 +291,16 @@ struct FclObject {
 
 void addFclAlgorithm(std::vector<Algorithm>& algos, const std::string& name, const Pairs& pairs,
                      const std::vector<FclObject>& a, const std::vector<FclObject>& b) {
-  algos.push_back({name, false, [&pairs, &a, &b](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
-                     fcl::CollisionRequestd request;  // default: GST_LIBCCD, one contact, no contact data
-                     return boolPass(pairs, k0, k1, ans, [&](int i, int j) {
-                       fcl::CollisionResultd result;
-                       fcl::collide(a[i].geometry.get(), a[i].X_WG, b[j].geometry.get(), b[j].X_WG, request, result);
-                       return result.isCollision();
-                     });
-                   }});
+  algos.push_back(
+      {name, false, [&pairs, &a, &b](std::size_t k0, std::size_t k1, std::uint8_t* ans) {
+         fcl::CollisionRequestd request;  // default: GST_LIBCCD, one contact, no contact data
+         return boolPass(pairs, k0, k1, ans, [&](int i, int j) {
+           fcl::CollisionResultd result;
+           fcl::collide(a[i].geometry.get(), a[i].X_WG, b[j].geometry.get(), b[j].X_WG, request,
+                        result);
+           return result.isCollision();
+         });
+       }});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -355,7 +372,8 @@ void buildBoxes(const std::vector<OrientedBox>& in, std::vector<Posed<Box>>& box
                 std::vector<FclObject>& fcl_prim) {
   for (const auto& b : in) {
     boxes.emplace_back(Box{b.half}, b.R_WB, b.p_WB);
-    boxes_f.emplace_back(BoxT<float>{b.half.cast<float>()}, b.R_WB.cast<float>(), b.p_WB.cast<float>());
+    boxes_f.emplace_back(BoxT<float>{b.half.cast<float>()}, b.R_WB.cast<float>(),
+                         b.p_WB.cast<float>());
     fcl_convex.push_back(fclBoxAsConvex(b));
     fcl_prim.push_back(fclBox(b));
   }
@@ -367,20 +385,24 @@ std::vector<Algorithm> makeAlgorithms(const WorkloadSet& w, Representations& r, 
   std::vector<Algorithm> algos;
   const Pairs& pairs = w.pairs;
   if (w.a_kind == SideKind::kPolytope) {
-    buildPolytopes(w.a_polytopes, r.a_hulls, r.a_scan_hulls, r.a_hulls_f, r.a_fcl_convex, scan_variant);
+    buildPolytopes(w.a_polytopes, r.a_hulls, r.a_scan_hulls, r.a_hulls_f, r.a_fcl_convex,
+                   scan_variant);
   } else {
     buildBoxes(w.a_boxes, r.a_boxes, r.a_boxes_f, r.a_fcl_convex, r.a_fcl_prim);
   }
   if (!w.same_set) {
     if (w.b_kind == SideKind::kPolytope) {
-      buildPolytopes(w.b_polytopes, r.b_hulls, r.b_scan_hulls, r.b_hulls_f, r.b_fcl_convex, scan_variant);
+      buildPolytopes(w.b_polytopes, r.b_hulls, r.b_scan_hulls, r.b_hulls_f, r.b_fcl_convex,
+                     scan_variant);
     } else if (w.b_kind == SideKind::kBox) {
       buildBoxes(w.b_boxes, r.b_boxes, r.b_boxes_f, r.b_fcl_convex, r.b_fcl_prim);
     } else {
       for (const auto& s : w.b_balls) {
         r.b_balls.emplace_back(Sphere{s.radius}, Mat3d::Identity(), s.p_WC);
-        r.b_balls_f.emplace_back(SphereT<float>{float(s.radius)}, Mat3<float>::Identity(), s.p_WC.cast<float>());
-        r.b_fcl_prim.push_back(FclObject{std::make_shared<fcl::Sphered>(s.radius), transformOf(Mat3d::Identity(), s.p_WC)});
+        r.b_balls_f.emplace_back(SphereT<float>{float(s.radius)}, Mat3<float>::Identity(),
+                                 s.p_WC.cast<float>());
+        r.b_fcl_prim.push_back(FclObject{std::make_shared<fcl::Sphered>(s.radius),
+                                         transformOf(Mat3d::Identity(), s.p_WC)});
       }
     }
   }
@@ -395,7 +417,8 @@ std::vector<Algorithm> makeAlgorithms(const WorkloadSet& w, Representations& r, 
   if (w.a_kind == SideKind::kPolytope && w.b_kind == SideKind::kPolytope) {
     addSupportAlgorithms(algos, pairs, r.a_hulls, bh, r.a_hulls_f, bhf, max_iterations);
     if (scan_variant)
-      addSupportAlgorithms(algos, pairs, r.a_scan_hulls, bh_scan, r.a_hulls_f, bhf, max_iterations, "-scan");
+      addSupportAlgorithms(algos, pairs, r.a_scan_hulls, bh_scan, r.a_hulls_f, bhf, max_iterations,
+                           "-scan");
     addFclAlgorithm(algos, "fcl-convex", pairs, r.a_fcl_convex, b_fcl_convex);
   } else if (w.a_kind == SideKind::kBox && w.b_kind == SideKind::kBox) {
     addSupportAlgorithms(algos, pairs, r.a_boxes, bb, r.a_boxes_f, bbf, max_iterations);
@@ -406,7 +429,8 @@ std::vector<Algorithm> makeAlgorithms(const WorkloadSet& w, Representations& r, 
     addFclAlgorithm(algos, "fcl-convex", pairs, r.a_fcl_convex, b_fcl_convex);
     addFclAlgorithm(algos, "fcl-box", pairs, r.a_fcl_convex, b_fcl_prim);
   } else {
-    addSupportAlgorithms(algos, pairs, r.a_hulls, r.b_balls, r.a_hulls_f, r.b_balls_f, max_iterations);
+    addSupportAlgorithms(algos, pairs, r.a_hulls, r.b_balls, r.a_hulls_f, r.b_balls_f,
+                         max_iterations);
     addFclAlgorithm(algos, "fcl-convex", pairs, r.a_fcl_convex, b_fcl_prim);
   }
   return algos;
@@ -451,7 +475,8 @@ std::vector<Row> runWorkload(const WorkloadSet& w, const Config& cfg, bool scan_
   std::string ref_name;
   if (exact_reference_feasible) {
     ref = referenceAnswers(w);
-    ref_name = (w.a_kind == SideKind::kPolytope && w.b_kind == SideKind::kPolytope) ? "exact-sat" : "longdouble";
+    ref_name = (w.a_kind == SideKind::kPolytope && w.b_kind == SideKind::kPolytope) ? "exact-sat"
+                                                                                    : "longdouble";
   }
   const double ref_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
@@ -491,7 +516,8 @@ std::vector<Row> runWorkload(const WorkloadSet& w, const Config& cfg, bool scan_
     ref.resize(m);
     for (std::size_t k = 0; k < algos.size(); ++k)
       if (algos[k].name == "dss-exact")
-        for (std::size_t p = 0; p < m; ++p) ref[p] = answers[k][p] ? RefAnswer::kIntersect : RefAnswer::kDisjoint;
+        for (std::size_t p = 0; p < m; ++p)
+          ref[p] = answers[k][p] ? RefAnswer::kIntersect : RefAnswer::kDisjoint;
     ref_name = "dss-exact";
   }
   std::size_t intersecting = 0, ties = 0;
@@ -514,8 +540,9 @@ std::vector<Row> runWorkload(const WorkloadSet& w, const Config& cfg, bool scan_
     // process spoils one block of one repetition and is discarded by that block's median.
     double sum_of_medians = 0;
     for (std::size_t blk = 0; blk < nblocks; ++blk)
-      sum_of_medians += median(std::vector<double>(block_seconds[k].begin() + blk * cfg.reps,
-                                                   block_seconds[k].begin() + (blk + 1) * cfg.reps));
+      sum_of_medians +=
+          median(std::vector<double>(block_seconds[k].begin() + blk * cfg.reps,
+                                     block_seconds[k].begin() + (blk + 1) * cfg.reps));
     row.ns_median = sum_of_medians * 1e9 / double(m);
     row.ns_min = *std::min_element(ns[k].begin(), ns[k].end());
     row.ns_max = *std::max_element(ns[k].begin(), ns[k].end());
@@ -533,15 +560,17 @@ std::vector<Row> runWorkload(const WorkloadSet& w, const Config& cfg, bool scan_
     }
     rows.push_back(row);
   }
-  std::fprintf(stderr, "  %-16s sigma %-6g pairs %zu density %5.1f%% (reference %s %.1fs, total %.1fs)\n",
+  std::fprintf(stderr,
+               "  %-16s sigma %-6g pairs %zu density %5.1f%% (reference %s %.1fs, total %.1fs)\n",
                w.name.c_str(), w.sigma, m, 100 * rows[0].density, ref_name.c_str(), ref_seconds,
                std::chrono::duration<double>(Clock::now() - t0).count());
   return rows;
 }
 
 void printRows(const std::vector<Row>& rows) {
-  std::printf("%-16s %6s %4s %6s %7s %5s  %-17s %9s %8s %7s %6s %5s %6s\n", "workload", "sigma", "verts",
-              "pairs", "density", "ties", "algo", "Mpairs/s", "ns/pair", "mean_it", "max_it", "caps", "wrong");
+  std::printf("%-16s %6s %4s %6s %7s %5s  %-17s %9s %8s %7s %6s %5s %6s\n", "workload", "sigma",
+              "verts", "pairs", "density", "ties", "algo", "Mpairs/s", "ns/pair", "mean_it",
+              "max_it", "caps", "wrong");
   std::string last;
   for (const auto& r : rows) {
     char key[128];
@@ -554,9 +583,9 @@ void printRows(const std::vector<Row>& rows) {
       std::snprintf(it_max, sizeof it_max, "%d", r.max_iterations);
       std::snprintf(caps, sizeof caps, "%lld", r.cap_hits);
     }
-    std::printf("%-16s %6g %4d %6zu %6.1f%% %5zu  %-17s %9.3f %8.1f %7s %6s %5s %6lld\n", r.workload.c_str(),
-                r.sigma, r.vertices, r.pairs, 100 * r.density, r.ties, r.algo.c_str(), r.mpairsPerSecond(),
-                r.ns_median, it_mean, it_max, caps, r.wrong);
+    std::printf("%-16s %6g %4d %6zu %6.1f%% %5zu  %-17s %9.3f %8.1f %7s %6s %5s %6lld\n",
+                r.workload.c_str(), r.sigma, r.vertices, r.pairs, 100 * r.density, r.ties,
+                r.algo.c_str(), r.mpairsPerSecond(), r.ns_median, it_mean, it_max, caps, r.wrong);
   }
 }
 
@@ -598,9 +627,10 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
     if (g.count("dss-exact")) {
       const Row& e = *g.at("dss-exact");
       const double v = e.ns_median / d.ns_median;
-      out.push_back({d.workload, d.sigma, d.density, d.vertices, "dss-exact cost / dss-double", v, 1.25, v <= 1.25});
-      out.push_back({d.workload, d.sigma, d.density, d.vertices, "dss-exact wrong answers", double(e.wrong), 0,
-                     e.wrong == 0});
+      out.push_back({d.workload, d.sigma, d.density, d.vertices, "dss-exact cost / dss-double", v,
+                     1.25, v <= 1.25});
+      out.push_back({d.workload, d.sigma, d.density, d.vertices, "dss-exact wrong answers",
+                     double(e.wrong), 0, e.wrong == 0});
     }
   }
   // Absolute rates of a careful plain implementation: tetrahedra at 60 %,
@@ -614,8 +644,8 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
     if (!best) return;
     char what[96];
     std::snprintf(what, sizeof what, "dss-double Mpairs/s (target at %.0f%%)", 100 * density);
-    out.push_back({workload, best->sigma, best->density, best->vertices, what, best->mpairsPerSecond(), mpairs,
-                   best->mpairsPerSecond() >= mpairs});
+    out.push_back({workload, best->sigma, best->density, best->vertices, what,
+                   best->mpairsPerSecond(), mpairs, best->mpairsPerSecond() >= mpairs});
   };
   absolute("tetra", 0.60, 7.0);
   absolute("poly16", 1.00, 5.0);
@@ -624,13 +654,15 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
 }
 
 void printRatios(const std::vector<Ratio>& ratios) {
-  std::printf("\nTargets (ratios of medians in this run; >= target unless the target is a cost):\n");
-  std::printf("%-16s %6s %4s %7s  %-38s %9s %7s  %s\n", "workload", "sigma", "verts", "density", "measure", "value",
-              "target", "");
+  std::printf(
+      "\nTargets (ratios of medians in this run; >= target unless the target is a cost):\n");
+  std::printf("%-16s %6s %4s %7s  %-38s %9s %7s  %s\n", "workload", "sigma", "verts", "density",
+              "measure", "value", "target", "");
   int met = 0;
   for (const auto& r : ratios) {
-    std::printf("%-16s %6g %4d %6.1f%%  %-38s %9.3f %7.2f  %s\n", r.workload.c_str(), r.sigma, r.vertices,
-                100 * r.density, r.what.c_str(), r.value, r.target, r.ok ? "ok" : "MISSED");
+    std::printf("%-16s %6g %4d %6.1f%%  %-38s %9.3f %7.2f  %s\n", r.workload.c_str(), r.sigma,
+                r.vertices, 100 * r.density, r.what.c_str(), r.value, r.target,
+                r.ok ? "ok" : "MISSED");
     met += r.ok;
   }
   std::printf("bar: %d of %zu met\n", met, ratios.size());
@@ -652,11 +684,12 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
   f << "workload,sigma,vertices,pairs,density,ties,reference,algo,mpairs_per_s,ns_per_pair_median,"
-       "ns_per_pair_min,ns_per_pair_max,mean_iterations,max_iterations,cap_hits,wrong,wrong_intersect\n";
+       "ns_per_pair_min,ns_per_pair_max,mean_iterations,max_iterations,cap_hits,wrong,wrong_"
+       "intersect\n";
   for (const auto& r : rows) {
-    f << r.workload << ',' << r.sigma << ',' << r.vertices << ',' << r.pairs << ',' << r.density << ',' << r.ties
-      << ',' << r.reference << ',' << r.algo << ',' << r.mpairsPerSecond() << ',' << r.ns_median << ','
-      << r.ns_min << ',' << r.ns_max << ',';
+    f << r.workload << ',' << r.sigma << ',' << r.vertices << ',' << r.pairs << ',' << r.density
+      << ',' << r.ties << ',' << r.reference << ',' << r.algo << ',' << r.mpairsPerSecond() << ','
+      << r.ns_median << ',' << r.ns_min << ',' << r.ns_max << ',';
     if (r.has_iterations)
       f << r.mean_iterations << ',' << r.max_iterations << ',' << r.cap_hits;
     else
@@ -676,11 +709,20 @@ void writeJson(const std::string& path, const Config& cfg, const std::vector<Row
   j["fcl_solver"] = "GST_LIBCCD (FCL 0.7 default)";
   j["ccd"] = {{"max_iterations", kCcdMaxIterations}, {"mpr_tolerance", kCcdTolerance}};
   for (const auto& r : rows) {
-    nlohmann::json x = {{"workload", r.workload}, {"sigma", r.sigma}, {"vertices", r.vertices},
-                        {"pairs", r.pairs}, {"density", r.density}, {"ties", r.ties},
-                        {"reference", r.reference}, {"algo", r.algo}, {"mpairs_per_s", r.mpairsPerSecond()},
-                        {"ns_per_pair_median", r.ns_median}, {"ns_per_pair_min", r.ns_min},
-                        {"ns_per_pair_max", r.ns_max}, {"wrong", r.wrong}, {"wrong_intersect", r.wrong_intersect}};
+    nlohmann::json x = {{"workload", r.workload},
+                        {"sigma", r.sigma},
+                        {"vertices", r.vertices},
+                        {"pairs", r.pairs},
+                        {"density", r.density},
+                        {"ties", r.ties},
+                        {"reference", r.reference},
+                        {"algo", r.algo},
+                        {"mpairs_per_s", r.mpairsPerSecond()},
+                        {"ns_per_pair_median", r.ns_median},
+                        {"ns_per_pair_min", r.ns_min},
+                        {"ns_per_pair_max", r.ns_max},
+                        {"wrong", r.wrong},
+                        {"wrong_intersect", r.wrong_intersect}};
     if (r.has_iterations) {
       x["mean_iterations"] = r.mean_iterations;
       x["max_iterations"] = r.max_iterations;
@@ -689,8 +731,13 @@ void writeJson(const std::string& path, const Config& cfg, const std::vector<Row
     j["rows"].push_back(x);
   }
   for (const auto& r : ratios)
-    j["bar"].push_back({{"workload", r.workload}, {"sigma", r.sigma}, {"vertices", r.vertices},
-                        {"density", r.density}, {"measure", r.what}, {"value", r.value}, {"target", r.target},
+    j["bar"].push_back({{"workload", r.workload},
+                        {"sigma", r.sigma},
+                        {"vertices", r.vertices},
+                        {"density", r.density},
+                        {"measure", r.what},
+                        {"value", r.value},
+                        {"target", r.target},
                         {"ok", r.ok}});
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
@@ -700,11 +747,15 @@ void writeJson(const std::string& path, const Config& cfg, const std::vector<Row
 int runNarrowphase(int argc, char** argv) {
   const Config cfg = parseArgs(argc, argv);
   const auto start = Clock::now();
-  std::printf("dss_bench narrowphase: N=%d, %d repetitions (interleaved, medians), seed %llu, "
-              "max_iterations %d\n", cfg.n, cfg.reps, (unsigned long long)cfg.seed, cfg.max_iterations);
-  std::printf("FCL %s with its default solver GST_LIBCCD (libccd MPR for convex pairs, box-box by its "
-              "dedicated test); libccd GJK/MPR through our support functions, %lu iterations, tolerance %.2g\n",
-              FCL_VERSION, kCcdMaxIterations, kCcdTolerance);
+  std::printf(
+      "dss_bench narrowphase: N=%d, %d repetitions (interleaved, medians), seed %llu, "
+      "max_iterations %d\n",
+      cfg.n, cfg.reps, (unsigned long long)cfg.seed, cfg.max_iterations);
+  std::printf(
+      "FCL %s with its default solver GST_LIBCCD (libccd MPR for convex pairs, box-box by its "
+      "dedicated test); libccd GJK/MPR through our support functions, %lu iterations, tolerance "
+      "%.2g\n",
+      FCL_VERSION, kCcdMaxIterations, kCcdTolerance);
   std::vector<Row> rows;
   if (!cfg.only_sweep) {
     for (auto kind : cfg.workloads) {

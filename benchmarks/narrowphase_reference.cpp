@@ -3,10 +3,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>
 #include <limits>
-
-#include <boost/multiprecision/cpp_int.hpp>
 
 namespace dss {
 namespace bench {
@@ -53,13 +52,19 @@ bool faceSeparates(const Polytope& p, const Polytope& q) {
     const Vec3d &a = p.vertices[t[0]], &b = p.vertices[t[1]], &c = p.vertices[t[2]];
     bool ok = true;
     for (const auto& y : q.vertices)
-      if (detSign(a, b, a, c, a, y) <= 0) { ok = false; break; }
+      if (detSign(a, b, a, c, a, y) <= 0) {
+        ok = false;
+        break;
+      }
     if (!ok) continue;
     // The face plane must also support p (it does for an exact hull; checked, so that a
     // "disjoint" answer never rests on qhull's rounding).
     for (std::size_t k = 0; k < p.vertices.size(); ++k) {
       if (int(k) == t[0] || int(k) == t[1] || int(k) == t[2]) continue;  // on the plane: sign 0
-      if (detSign(a, b, a, c, a, p.vertices[k]) > 0) { ok = false; break; }
+      if (detSign(a, b, a, c, a, p.vertices[k]) > 0) {
+        ok = false;
+        break;
+      }
     }
     if (ok) return true;
   }
@@ -114,11 +119,17 @@ bool edgesSeparate(const Polytope& a, const Polytope& b) {
       if (sb != -sa) continue;
       bool ok = true;
       for (const auto& y : b.vertices)
-        if (detSign(a0, a1, b0, b1, a0, y) * sa >= 0) { ok = false; break; }
+        if (detSign(a0, a1, b0, b1, a0, y) * sa >= 0) {
+          ok = false;
+          break;
+        }
       if (!ok) continue;
       for (std::size_t k = 0; k < a.vertices.size(); ++k) {
         if (int(k) == ea.a || int(k) == ea.b) continue;  // on the plane: sign 0
-        if (detSign(a0, a1, b0, b1, a0, a.vertices[k]) * sa < 0) { ok = false; break; }
+        if (detSign(a0, a1, b0, b1, a0, a.vertices[k]) * sa < 0) {
+          ok = false;
+          break;
+        }
       }
       if (ok) return true;
     }
@@ -153,7 +164,8 @@ LdPolytope fromPolytope(const Polytope& q) {
   LdPolytope p;
   for (const auto& v : q.vertices) p.vertices.push_back(toL(v));
   for (const auto& t : q.triangles)
-    p.normals.push_back((p.vertices[t[1]] - p.vertices[t[0]]).cross(p.vertices[t[2]] - p.vertices[t[0]]));
+    p.normals.push_back(
+        (p.vertices[t[1]] - p.vertices[t[0]]).cross(p.vertices[t[2]] - p.vertices[t[0]]));
   for (const auto& e : q.edges) p.edges.push_back(p.vertices[e.b] - p.vertices[e.a]);
   return p;
 }
@@ -192,7 +204,8 @@ long double satGap(const LdPolytope& a, const LdPolytope& b) {
 }
 
 long double pointTriangleDistance(const Vec3L& p, const Vec3L& a, const Vec3L& b, const Vec3L& c) {
-  // Closest point by Voronoi regions of the triangle (Ericson, Real-Time Collision Detection 5.1.5).
+  // Closest point by Voronoi regions of the triangle (Ericson, Real-Time Collision
+  // Detection 5.1.5).
   const Vec3L ab = b - a, ac = c - a, ap = p - a;
   const long double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return (p - a).norm();
@@ -248,7 +261,8 @@ long double polytopeBallGap(const Polytope& a, const Ball& b) {
   } else {
     dist = INFINITY;
     for (const auto& t : a.triangles)
-      dist = std::min(dist, pointTriangleDistance(c, p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]]));
+      dist = std::min(
+          dist, pointTriangleDistance(c, p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]]));
   }
   return dist - (long double)b.radius;
 }
@@ -263,10 +277,11 @@ std::vector<RefAnswer> referenceAnswers(const WorkloadSet& w) {
     const auto [i, j] = w.pairs[k];
     if (w.a_kind == SideKind::kPolytope && w.b_kind == SideKind::kPolytope) {
       out[k] = polytopesIntersectExact(w.a_polytopes[i], w.bPolytopes()[j]) ? RefAnswer::kIntersect
-                                                                             : RefAnswer::kDisjoint;
+                                                                            : RefAnswer::kDisjoint;
     } else if (w.a_kind == SideKind::kBox && w.b_kind == SideKind::kBox) {
       const auto &a = w.a_boxes[i], &b = w.bBoxes()[j];
-      const long double scale = 1 + std::max(a.p_WB.cwiseAbs().maxCoeff(), b.p_WB.cwiseAbs().maxCoeff()) + 2;
+      const long double scale =
+          1 + std::max(a.p_WB.cwiseAbs().maxCoeff(), b.p_WB.cwiseAbs().maxCoeff()) + 2;
       out[k] = classify(boxBoxGap(a, b), scale);
     } else if (w.a_kind == SideKind::kPolytope && w.b_kind == SideKind::kBox) {
       const Polytope& a = w.a_polytopes[i];

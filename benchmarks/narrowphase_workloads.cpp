@@ -41,7 +41,8 @@ struct Rng {
   Mat3d rotation() {  // uniform on SO(3) (Shoemake)
     const double u1 = uniform(0, 1), u2 = uniform(0, 2 * kPi), u3 = uniform(0, 2 * kPi);
     const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
+    const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2),
+                               b * std::sin(u3));
     return q.normalized().toRotationMatrix();
   }
 };
@@ -98,7 +99,8 @@ void Polytope::finishTopology() {
   std::map<std::pair<int, int>, std::vector<int>> opposite;
   std::map<std::pair<int, int>, std::vector<Vec3d>> normals;
   for (const auto& t : triangles) {
-    const Vec3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).normalized();
+    const Vec3d n =
+        (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).normalized();
     for (int k = 0; k < 3; ++k) {
       int a = t[k], b = t[(k + 1) % 3];
       if (a > b) std::swap(a, b);
@@ -109,7 +111,8 @@ void Polytope::finishTopology() {
   edges.clear();
   neighbours.assign(vertices.size(), {});
   for (const auto& [key, opp] : opposite) {
-    if (opp.size() != 2) throw std::runtime_error("Polytope: hull edge not shared by two triangles");
+    if (opp.size() != 2)
+      throw std::runtime_error("Polytope: hull edge not shared by two triangles");
     const auto& nrm = normals[key];
     edges.push_back(Edge{key.first, key.second, {opp[0], opp[1]}, {nrm[0], nrm[1]}});
     neighbours[key.first].push_back(key.second);
@@ -119,22 +122,31 @@ void Polytope::finishTopology() {
 
 const char* workloadName(WorkloadKind kind) {
   switch (kind) {
-    case WorkloadKind::kTetrahedra: return "tetra";
-    case WorkloadKind::kBoxes: return "boxes";
-    case WorkloadKind::kPolytopes: return "poly16";
-    case WorkloadKind::kFrustumSpheres: return "frustum-spheres";
-    case WorkloadKind::kFrustumBoxes: return "frustum-boxes";
+    case WorkloadKind::kTetrahedra:
+      return "tetra";
+    case WorkloadKind::kBoxes:
+      return "boxes";
+    case WorkloadKind::kPolytopes:
+      return "poly16";
+    case WorkloadKind::kFrustumSpheres:
+      return "frustum-spheres";
+    case WorkloadKind::kFrustumBoxes:
+      return "frustum-boxes";
   }
   return "?";
 }
 
 std::vector<double> defaultSigmas(WorkloadKind kind) {
   switch (kind) {
-    case WorkloadKind::kTetrahedra: return {0.0, 0.8, 1.5, 2.5, 5.0, 15.0, 200.0};
-    case WorkloadKind::kBoxes: return {0.2, 0.5, 1.0, 1.6, 2.5, 4.0, 10.0};
-    case WorkloadKind::kPolytopes: return {0.0, 2.0, 3.0, 4.0, 8.0, 20.0, 150.0};
+    case WorkloadKind::kTetrahedra:
+      return {0.0, 0.8, 1.5, 2.5, 5.0, 15.0, 200.0};
+    case WorkloadKind::kBoxes:
+      return {0.2, 0.5, 1.0, 1.6, 2.5, 4.0, 10.0};
+    case WorkloadKind::kPolytopes:
+      return {0.0, 2.0, 3.0, 4.0, 8.0, 20.0, 150.0};
     case WorkloadKind::kFrustumSpheres:
-    case WorkloadKind::kFrustumBoxes: return {1.0, 1.3, 1.7, 2.2, 3.0, 4.5, 6.5};
+    case WorkloadKind::kFrustumBoxes:
+      return {1.0, 1.3, 1.7, 2.2, 3.0, 4.5, 6.5};
   }
   return {};
 }
@@ -177,11 +189,13 @@ WorkloadSet makeWorkload(WorkloadKind kind, double sigma, int n, std::uint64_t s
       w.a_kind = w.b_kind = SideKind::kPolytope;
       w.same_set = true;
       w.vertex_count = kind == WorkloadKind::kTetrahedra ? 4 : vertices;
-      if (kind == WorkloadKind::kPolytopes && vertices != 16) w.name = "poly" + std::to_string(vertices);
+      if (kind == WorkloadKind::kPolytopes && vertices != 16)
+        w.name = "poly" + std::to_string(vertices);
       for (int i = 0; i < n; ++i) {
         const double shift = rng.uniform(0, sigma);
-        w.a_polytopes.push_back(kind == WorkloadKind::kTetrahedra ? tetrahedron(rng, shift)
-                                                                  : randomPolytope(rng, vertices, shift));
+        w.a_polytopes.push_back(kind == WorkloadKind::kTetrahedra
+                                    ? tetrahedron(rng, shift)
+                                    : randomPolytope(rng, vertices, shift));
       }
       allPairs(n);
       break;

@@ -20,9 +20,9 @@ namespace bench {
 /// two vertices opposite it in its adjacent triangles (for the exact separating-axis reference).
 struct Polytope {
   struct Edge {
-    int a, b;            // endpoints
-    int opposite[2];     // third vertices of the two adjacent triangles
-    Vec3d normal[2];     // unit outward normals of those triangles (rounded; a filter only)
+    int a, b;         // endpoints
+    int opposite[2];  // third vertices of the two adjacent triangles
+    Vec3d normal[2];  // unit outward normals of those triangles (rounded; a filter only)
   };
   std::vector<Vec3d> vertices;
   std::vector<std::array<int, 3>> triangles;
@@ -54,9 +54,9 @@ enum class SideKind { kPolytope, kBox, kBall };
 /// sides refer to the same objects (stored once, in the A arrays, with `same_set` true).
 struct WorkloadSet {
   WorkloadKind kind;
-  std::string name;       // "tetra", "boxes", "poly16", "frustum-spheres", "frustum-boxes"
+  std::string name;  // "tetra", "boxes", "poly16", "frustum-spheres", "frustum-boxes"
   double sigma = 0;
-  int vertex_count = 0;   // polytope vertices (0 when not a polytope workload)
+  int vertex_count = 0;  // polytope vertices (0 when not a polytope workload)
   SideKind a_kind, b_kind;
   bool same_set = false;
   std::vector<Polytope> a_polytopes, b_polytopes;

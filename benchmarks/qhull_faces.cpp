@@ -35,8 +35,8 @@ std::vector<std::array<int, 3>> hullTriangles(const std::vector<Vec3d>& points) 
   qhT* qh = &qh_storage;
   qh_zero(qh, stderr);
   char flags[] = "qhull Qt";
-  const int code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False,
-                                flags, nullptr, stderr);
+  const int code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, flags,
+                                nullptr, stderr);
   std::vector<std::array<int, 3>> triangles;
   if (code == 0) {
     facetT* facet;

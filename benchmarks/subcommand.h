@@ -34,6 +34,6 @@ struct SubcommandRegistration {
 #define DSS_BENCH_CONCAT_(a, b) a##b
 #define DSS_BENCH_CONCAT(a, b) DSS_BENCH_CONCAT_(a, b)
 /// DSS_BENCH_SUBCOMMAND("name", "one-line summary", function)
-#define DSS_BENCH_SUBCOMMAND(name, summary, fn)                                        \
-  static const ::dss::bench::SubcommandRegistration DSS_BENCH_CONCAT(kDssBenchSub_, \
-                                                                     __LINE__)(name, summary, fn)
+#define DSS_BENCH_SUBCOMMAND(name, summary, fn)                                                \
+  static const ::dss::bench::SubcommandRegistration DSS_BENCH_CONCAT(kDssBenchSub_, __LINE__)( \
+      name, summary, fn)

@@ -15,6 +15,13 @@
 // Settings vary one axis at a time around the default (hull, exact, no padding, cap 64,
 // discrete motion checks at 1 % of the space extent), plus a few combinations. Timing: thread
 // CPU time, every setting in every repetition, median over repetitions.
+#include <fcl/fcl.h>
+#include <ompl/base/goals/GoalStates.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
 #include <algorithm>
 #include <chrono>
 #include <climits>
@@ -35,18 +42,11 @@
 #include <string>
 #include <vector>
 
-#include <fcl/fcl.h>
-#include <ompl/base/goals/GoalStates.h>
-#include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
-
-#include "dss/core/any_shape_query.h"
 #include "dss/checker/continuous_motion.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/sweep.h"
+#include "dss/core/any_shape_query.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
@@ -96,7 +96,8 @@ const char* kUsage =
     "  --settings LIST      only these settings (names as in the table, e.g. default,continuous)\n"
     "  --delta M            motion truth: largest point displacement between samples (0.001 m)\n"
     "  --motion-length F    motions: from a truth-free start, a random direction, length uniform\n"
-    "                       in (0, F] x the space's extent, clipped at the limits, to a truth-free\n"
+    "                       in (0, F] x the space's extent, clipped at the limits, to a "
+    "truth-free\n"
     "                       end; F >= 1 (default): independent pairs of truth-free states\n"
     "  --plan-time S        RRTConnect time limit per problem (10 s)\n"
     "  --no-plan            skip the planning runs\n"
@@ -147,11 +148,16 @@ enum class Geo { kHull, kSpheres, kCapsules, kMesh, kFclHull };
 
 const char* geoName(Geo g) {
   switch (g) {
-    case Geo::kHull: return "hull";
-    case Geo::kSpheres: return "spheres";
-    case Geo::kCapsules: return "capsules";
-    case Geo::kMesh: return "mesh";
-    case Geo::kFclHull: return "fcl-hull";
+    case Geo::kHull:
+      return "hull";
+    case Geo::kSpheres:
+      return "spheres";
+    case Geo::kCapsules:
+      return "capsules";
+    case Geo::kMesh:
+      return "mesh";
+    case Geo::kFclHull:
+      return "fcl-hull";
   }
   return "?";
 }
@@ -166,26 +172,32 @@ struct RobotSpec {
   std::optional<VariantSpec> spheres, capsules;
   std::string scene_dir;  // under shared/scenes
   std::vector<std::string> types;
-  bool requests = true;   // the scene folder's requests are this robot's (planning, held joints)
+  bool requests = true;  // the scene folder's requests are this robot's (planning, held joints)
   int max_scenes_per_type = 1000;
 };
 
 std::vector<RobotSpec> robotSpecs() {
-  const std::string iiwa_srdf = std::string(DSS_SOURCE_DIR_DEFAULT) + "/benchmarks/data/iiwa14.srdf";
-  const std::vector<std::string> all = {"bookshelf_small", "bookshelf_tall", "bookshelf_thin", "box",
-                                        "cage", "table_pick", "table_under_pick"};
+  const std::string iiwa_srdf =
+      std::string(DSS_SOURCE_DIR_DEFAULT) + "/benchmarks/data/iiwa14.srdf";
+  const std::vector<std::string> all = {
+      "bookshelf_small", "bookshelf_tall",  "bookshelf_thin", "box", "cage",
+      "table_pick",      "table_under_pick"};
   std::vector<RobotSpec> r;
   // Every Panda variant uses the MBM Panda's SRDF, so that the self pairs are the same ones.
   r.push_back({"panda",
                {"panda/panda.urdf", "panda/panda.srdf"},
                VariantSpec{"panda_vamp/panda_spherized.urdf", "panda/panda.srdf"},
                VariantSpec{"panda_description/panda_collision.urdf", "panda/panda.srdf"},
-               "mbm_panda", all, true});
+               "mbm_panda",
+               all,
+               true});
   r.push_back({"ur5",
                {"ur5_robotiq85/ur5.urdf", "ur5_robotiq85/ur5.srdf"},
                VariantSpec{"ur5_robotiq85/ur5_spherized.urdf", "ur5_robotiq85/ur5.srdf"},
                std::nullopt,
-               "mbm_ur5", all, true});
+               "mbm_ur5",
+               all,
+               true});
   // The iiwa stands where the Panda stands: MBM Panda scenes place the robot's root at the world
   // origin (identity virtual joint), and so do we for the iiwa's root link `base`.
   r.push_back({"iiwa",
@@ -221,7 +233,9 @@ struct Setting {
   }
   bool isFcl() const { return geo == Geo::kMesh || geo == Geo::kFclHull; }
   std::string modeName() const { return isFcl() ? "fcl" : toString(mode); }
-  std::string capName() const { return isFcl() ? "-" : cap == INT_MAX ? "none" : std::to_string(cap); }
+  std::string capName() const {
+    return isFcl() ? "-" : cap == INT_MAX ? "none" : std::to_string(cap);
+  }
   std::string motionName() const {
     if (resolution <= 0) return "continuous";
     std::ostringstream os;
@@ -232,8 +246,10 @@ struct Setting {
 
 std::vector<Setting> allSettings() {
   std::vector<Setting> s;
-  auto add = [&](std::string name, std::string axis, Geo geo, Mode mode, int cap, double pad, double res,
-                 bool plan) { s.push_back({name, axis, geo, mode, cap, pad, res, plan}); };
+  auto add = [&](std::string name, std::string axis, Geo geo, Mode mode, int cap, double pad,
+                 double res, bool plan) {
+    s.push_back({name, axis, geo, mode, cap, pad, res, plan});
+  };
   const Mode E = Mode::kExact;
   add("default", "default", Geo::kHull, E, 64, 0, 0.01, true);
   add("spheres", "geometry", Geo::kSpheres, E, 64, 0, 0.01, true);
@@ -245,7 +261,8 @@ std::vector<Setting> allSettings() {
   add("pad 5mm", "padding", Geo::kHull, E, 64, 0.005, 0.01, false);
   add("pad 1cm", "padding", Geo::kHull, E, 64, 0.01, 0.01, true);
   add("pad 2cm", "padding", Geo::kHull, E, 64, 0.02, 0.01, false);
-  for (int cap : {8, 12, 20, 50}) add("cap " + std::to_string(cap), "cap", Geo::kHull, E, cap, 0, 0.01, false);
+  for (int cap : {8, 12, 20, 50})
+    add("cap " + std::to_string(cap), "cap", Geo::kHull, E, cap, 0, 0.01, false);
   add("cap none", "cap", Geo::kHull, E, INT_MAX, 0, 0.01, false);
   add("discrete 0.5%", "motion", Geo::kHull, E, 64, 0, 0.005, false);
   add("discrete 0.1%", "motion", Geo::kHull, E, 64, 0, 0.001, false);
@@ -291,15 +308,18 @@ struct SceneCtx {
   std::map<std::string, double> start;
   std::string group;
   std::map<std::string, std::unique_ptr<VariantProblem>> problems;  // geo|margin
-  std::vector<std::vector<double>> states;  // reference group order
-  std::vector<char> state_truth;            // 1: the truth collides
+  std::vector<std::vector<double>> states;                          // reference group order
+  std::vector<char> state_truth;                                    // 1: the truth collides
   std::vector<Motion> motions;
   std::vector<char> motion_truth;
 };
 
 std::string problemKey(Geo g, double margin) {
   std::ostringstream os;
-  os << (g == Geo::kSpheres ? "spheres" : g == Geo::kCapsules ? "capsules" : "truth") << "|" << margin;
+  os << (g == Geo::kSpheres    ? "spheres"
+         : g == Geo::kCapsules ? "capsules"
+                               : "truth")
+     << "|" << margin;
   return os.str();
 }
 
@@ -308,7 +328,8 @@ std::set<std::string>& seenWarnings() {
   return s;
 }
 
-VariantProblem& problemFor(SceneCtx& ctx, const Loaded& L, Geo g, double margin, const VariantProblem* ref) {
+VariantProblem& problemFor(SceneCtx& ctx, const Loaded& L, Geo g, double margin,
+                           const VariantProblem* ref) {
   const std::string key = problemKey(g, margin);
   auto it = ctx.problems.find(key);
   if (it != ctx.problems.end()) return *it->second;
@@ -326,7 +347,8 @@ VariantProblem& problemFor(SceneCtx& ctx, const Loaded& L, Geo g, double margin,
   for (const auto& n : names) {
     auto f = std::find(ref_names.begin(), ref_names.end(), n);
     if (f == ref_names.end())
-      throw std::runtime_error(robot->model->source + ": group joint '" + n + "' is not a joint of the reference model");
+      throw std::runtime_error(robot->model->source + ": group joint '" + n +
+                               "' is not a joint of the reference model");
     vp->from_truth.push_back(int(f - ref_names.begin()));
   }
   if (names.size() != ref_names.size())
@@ -346,7 +368,8 @@ std::vector<std::vector<ChainTerm>> chainBounds(const CollisionModel& m) {
   std::vector<std::vector<ChainTerm>> chains(m.slots().size());
   for (std::size_t k = 0; k < m.slots().size(); ++k) {
     const auto& s = m.slots()[k];
-    if (s.moves) chains[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
+    if (s.moves)
+      chains[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
   }
   return chains;
 }
@@ -369,8 +392,8 @@ struct Truth {
     const Options exact;
     const auto& el = m.elements();
     fcl::CollisionRequestd req;
-    auto fclHit = [&](const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& XA, const fcl::CollisionGeometryd* b,
-                      const Eigen::Isometry3d& XB) {
+    auto fclHit = [&](const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& XA,
+                      const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& XB) {
       fcl::CollisionResultd res;
       fcl::collide(a, fcl::Transform3d(XA.matrix()), b, fcl::Transform3d(XB.matrix()), req, res);
       return res.isCollision();
@@ -382,11 +405,13 @@ struct Truth {
         m, X.data(), no_tables.data(), SweepOptions{},
         [&](int e, const Eigen::Isometry3d& X_WS, int o) {
           const auto& ob = m.scene().obstacles[o];
-          if (!intersect(el[e].source->shape, X_WS, ob.shape, ob.X_WO, exact).intersect) return false;
+          if (!intersect(el[e].source->shape, X_WS, ob.shape, ob.X_WO, exact).intersect)
+            return false;
           return fclHit(fm->elementGeometry(e), X_WS, fm->obstacleGeometry(o), ob.X_WO);
         },
         [&](int ea, const Eigen::Isometry3d& XA, int eb, const Eigen::Isometry3d& XB) {
-          if (!intersect(el[ea].source->shape, XA, el[eb].source->shape, XB, exact).intersect) return false;
+          if (!intersect(el[ea].source->shape, XA, el[eb].source->shape, XB, exact).intersect)
+            return false;
           return fclHit(fm->elementGeometry(ea), XA, fm->elementGeometry(eb), XB);
         });
   }
@@ -423,7 +448,8 @@ struct Truth {
 // FCL says on the meshes and the gap DSS certifies between the hulls (bisection on an exact
 // padded test: "padded(A, r) meets B" iff distance(A, B) <= r).
 
-double certifiedGap(const AnyShape& a, const Eigen::Isometry3d& XA, const AnyShape& b, const Eigen::Isometry3d& XB) {
+double certifiedGap(const AnyShape& a, const Eigen::Isometry3d& XA, const AnyShape& b,
+                    const Eigen::Isometry3d& XB) {
   Options opt;
   opt.max_iterations = 1000;
   auto meets = [&](double r) { return intersect(a, XA, b, XB, opt, r).intersect; };
@@ -437,10 +463,10 @@ double certifiedGap(const AnyShape& a, const Eigen::Isometry3d& XA, const AnySha
   return lo;  // DSS certifies distance > lo
 }
 
-
 /// Names of the pairs (link vs obstacle, link vs link) that DSS-exact finds intersecting at q,
 /// with the model's own pairs and no filters: what a setting's false alarms come from.
-std::vector<std::string> collidingPairs(const CollisionModel& m, const double* q, double scene_padding = 0.0) {
+std::vector<std::string> collidingPairs(const CollisionModel& m, const double* q,
+                                        double scene_padding = 0.0) {
   const RobotModel& r = m.robot();
   std::vector<Eigen::Isometry3d> X(r.links.size(), Eigen::Isometry3d::Identity());
   m.kinematics().computeLinkPoses(q, X.data());
@@ -453,8 +479,9 @@ std::vector<std::string> collidingPairs(const CollisionModel& m, const double* q
       for (int e = s.first_element; e < s.first_element + s.num_elements && !hit; ++e) {
         const Eigen::Isometry3d XA = X[s.link] * el[e].source->X_LS;
         const auto& ob = m.scene().obstacles[o];
-        hit = scene_padding > 0 ? certifiedGap(el[e].source->shape, XA, ob.shape, ob.X_WO) <= scene_padding
-                                : intersect(el[e].source->shape, XA, ob.shape, ob.X_WO, exact).intersect;
+        hit = scene_padding > 0
+                  ? certifiedGap(el[e].source->shape, XA, ob.shape, ob.X_WO) <= scene_padding
+                  : intersect(el[e].source->shape, XA, ob.shape, ob.X_WO, exact).intersect;
       }
       if (hit) out.push_back(r.links[s.link].name + " vs scene");
     }
@@ -465,8 +492,8 @@ std::vector<std::string> collidingPairs(const CollisionModel& m, const double* q
     bool hit = false;
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements && !hit; ++ea)
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements && !hit; ++eb)
-        hit = intersect(el[ea].source->shape, X[sa.link] * el[ea].source->X_LS, el[eb].source->shape,
-                        X[sb.link] * el[eb].source->X_LS, exact)
+        hit = intersect(el[ea].source->shape, X[sa.link] * el[ea].source->X_LS,
+                        el[eb].source->shape, X[sb.link] * el[eb].source->X_LS, exact)
                   .intersect;
     if (hit) {
       std::string a = r.links[sa.link].name, b = r.links[sb.link].name;
@@ -490,7 +517,8 @@ std::vector<std::string> addDefaultCollidingPairs(LoadedRobot& robot) {
   std::vector<std::string> added;
   for (const auto& name : collidingPairs(m, q.data())) {
     const auto sep = name.find(" vs ");
-    robot.srdf->disabled_collisions.push_back({name.substr(0, sep), name.substr(sep + 4), "Default"});
+    robot.srdf->disabled_collisions.push_back(
+        {name.substr(0, sep), name.substr(sep + 4), "Default"});
     added.push_back(name);
   }
   return added;
@@ -510,9 +538,9 @@ Diagnosis diagnose(const VariantProblem& vp, const FclChecker& fcl, const double
   Options exact;
   bool any_real = false, any = false;
   std::ostringstream os;
-  auto pairTest = [&](const fcl::CollisionGeometryd* ga, const Eigen::Isometry3d& XA, const AnyShape& sa,
-                      const fcl::CollisionGeometryd* gb, const Eigen::Isometry3d& XB, const AnyShape& sb,
-                      const std::string& what) {
+  auto pairTest = [&](const fcl::CollisionGeometryd* ga, const Eigen::Isometry3d& XA,
+                      const AnyShape& sa, const fcl::CollisionGeometryd* gb,
+                      const Eigen::Isometry3d& XB, const AnyShape& sb, const std::string& what) {
     fcl::CollisionResultd res;
     fcl::collide(ga, fcl::Transform3d(XA.matrix()), gb, fcl::Transform3d(XB.matrix()), req, res);
     if (!res.isCollision()) return;
@@ -520,20 +548,22 @@ Diagnosis diagnose(const VariantProblem& vp, const FclChecker& fcl, const double
     const bool dss_hit = intersect(sa, XA, sb, XB, exact).intersect;
     if (dss_hit) {
       any_real = true;
-      os << "    " << what << ": FCL collides, DSS hull collides too (a filter or pair-set difference)\n";
+      os << "    " << what
+         << ": FCL collides, DSS hull collides too (a filter or pair-set difference)\n";
       return;
     }
     const double gap = certifiedGap(sa, XA, sb, XB);
-    os << "    " << what << ": FCL calls the meshes colliding; DSS certifies the hulls (which contain the meshes) "
-       << (gap > 0 ? "apart by more than " : "apart (gap below bisection resolution) ") << std::setprecision(3)
-       << gap * 1e6 << " um\n";
+    os << "    " << what
+       << ": FCL calls the meshes colliding; DSS certifies the hulls (which contain the meshes) "
+       << (gap > 0 ? "apart by more than " : "apart (gap below bisection resolution) ")
+       << std::setprecision(3) << gap * 1e6 << " um\n";
   };
   const auto& el = m.elements();
   for (const auto& s : m.slots()) {
     for (int o : s.obstacles)
       for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
-        pairTest(fcl.elementGeometry(e), X[s.link] * el[e].source->X_LS, el[e].source->shape, fcl.obstacleGeometry(o),
-                 m.scene().obstacles[o].X_WO, m.scene().obstacles[o].shape,
+        pairTest(fcl.elementGeometry(e), X[s.link] * el[e].source->X_LS, el[e].source->shape,
+                 fcl.obstacleGeometry(o), m.scene().obstacles[o].X_WO, m.scene().obstacles[o].shape,
                  r.links[s.link].name + " vs " + m.scene().obstacles[o].name);
   }
   for (const auto& p : m.selfPairs()) {
@@ -558,7 +588,7 @@ struct Instance {
   const VariantProblem* vp = nullptr;
   std::shared_ptr<const StateChecker> checker;
   std::shared_ptr<const ContinuousMotionChecker> cmv;
-  std::vector<double> qs;  // states, pre-mapped (n x nq)
+  std::vector<double> qs;      // states, pre-mapped (n x nq)
   std::vector<double> m0, m1;  // motion endpoints, pre-mapped
   std::vector<long> segs;      // discrete segments per motion
 };
@@ -578,7 +608,8 @@ struct Row {
   Setting s;
   std::string model;
   int scenes = 0;
-  long states = 0, truth_states = 0, missed = 0, false_alarms = 0, fcl_gap_claims = 0, unexplained = 0;
+  long states = 0, truth_states = 0, missed = 0, false_alarms = 0, fcl_gap_claims = 0,
+       unexplained = 0;
   std::uint64_t cap_hits = 0;
   double us_state = 0;
   long motions = 0, truth_motions = 0, m_missed = 0, m_false = 0;
@@ -609,8 +640,9 @@ std::string robotPath(const Args& a, const std::string& rel) {
 
 /// Kinematic consistency of a variant with the reference: largest offset of a same-named link's
 /// origin over random states (the variant's held values, the reference's group values).
-std::string kinematicsCheck(const VariantProblem& ref, const VariantProblem& var, std::mt19937_64& rng,
-                            const std::vector<double>& lo, const std::vector<double>& hi) {
+std::string kinematicsCheck(const VariantProblem& ref, const VariantProblem& var,
+                            std::mt19937_64& rng, const std::vector<double>& lo,
+                            const std::vector<double>& hi) {
   const RobotModel& ra = ref.p.model->robot();
   const RobotModel& rb = var.p.model->robot();
   std::vector<Eigen::Isometry3d> XA(ra.links.size()), XB(rb.links.size());
@@ -618,7 +650,8 @@ std::string kinematicsCheck(const VariantProblem& ref, const VariantProblem& var
   double worst = 0.0, worst_rot = 0.0;
   int compared = 0;
   for (int k = 0; k < 200; ++k) {
-    for (std::size_t i = 0; i < g.size(); ++i) g[i] = std::uniform_real_distribution<double>(lo[i], hi[i])(rng);
+    for (std::size_t i = 0; i < g.size(); ++i)
+      g[i] = std::uniform_real_distribution<double>(lo[i], hi[i])(rng);
     ref.toQ(g.data(), qa.data());
     var.toQ(g.data(), qb.data());
     // computeLinkPoses fills only links with geometry or leading to it: compare those with
@@ -634,18 +667,20 @@ std::string kinematicsCheck(const VariantProblem& ref, const VariantProblem& var
       if (m < 0 || !rb.links[m].hasGeometry()) continue;
       ++compared;
       worst = std::max(worst, (XA[l].translation() - XB[m].translation()).norm());
-      worst_rot = std::max(worst_rot, Eigen::AngleAxisd(XA[l].linear().transpose() * XB[m].linear()).angle());
+      worst_rot = std::max(worst_rot,
+                           Eigen::AngleAxisd(XA[l].linear().transpose() * XB[m].linear()).angle());
     }
   }
   std::ostringstream os;
-  os << compared << " links with geometry compared over 200 states: largest origin offset " << std::setprecision(3)
-     << worst << " m, rotation " << worst_rot << " rad"
-     << (worst > 1e-9 || worst_rot > 1e-9 ? "  ** kinematics differ from the reference **" : " (same kinematics)");
+  os << compared << " links with geometry compared over 200 states: largest origin offset "
+     << std::setprecision(3) << worst << " m, rotation " << worst_rot << " rad"
+     << (worst > 1e-9 || worst_rot > 1e-9 ? "  ** kinematics differ from the reference **"
+                                          : " (same kinematics)");
   return os.str();
 }
 
-std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index, const std::vector<Setting>& settings,
-                          bool* bar_failed) {
+std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
+                          const std::vector<Setting>& settings, bool* bar_failed) {
   std::vector<Row> rows;
   // Files present?
   std::vector<std::string> need = {robotPath(a, spec.truth.urdf), robotPath(a, spec.truth.srdf)};
@@ -663,16 +698,19 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
   run.spec = &spec;
   const double t_load = cpuNow();
   run.L.truth = loadRobot(robotPath(a, spec.truth.urdf), robotPath(a, spec.truth.srdf));
-  auto loadVariant = [&](const std::optional<VariantSpec>& v, const char* what) -> std::optional<LoadedRobot> {
+  auto loadVariant = [&](const std::optional<VariantSpec>& v,
+                         const char* what) -> std::optional<LoadedRobot> {
     if (!v) return std::nullopt;
     if (!fileExists(robotPath(a, v->urdf)) || !fileExists(robotPath(a, v->srdf))) {
-      std::cout << "tradeoff: " << spec.name << ": no " << what << " model (" << robotPath(a, v->urdf) << " absent)\n";
+      std::cout << "tradeoff: " << spec.name << ": no " << what << " model ("
+                << robotPath(a, v->urdf) << " absent)\n";
       return std::nullopt;
     }
     LoadedRobot lr = loadRobot(robotPath(a, v->urdf), robotPath(a, v->srdf));
     for (const auto& p : addDefaultCollidingPairs(lr))
-      std::cout << "  " << what << " model: self pair " << p
-                << " collides at the default state: disabled (MoveIt Setup Assistant's 'Default' rule)\n";
+      std::cout
+          << "  " << what << " model: self pair " << p
+          << " collides at the default state: disabled (MoveIt Setup Assistant's 'Default' rule)\n";
     return lr;
   };
   run.L.spheres = loadVariant(spec.spheres, "sphere");
@@ -728,10 +766,10 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     run.extent = std::sqrt(run.extent);
   }
   const VariantProblem& ref0 = *run.scenes[0]->problems.at(problemKey(Geo::kHull, 0.0));
-  std::cout << "\n=== " << spec.name << ": " << run.L.truth.model->source << " (" << ref0.p.map->dimension()
-            << " joints, group '" << ref0.p.group << "'), " << run.scenes.size() << " scene(s) of "
-            << spec.scene_dir << "; loaded in " << std::fixed << std::setprecision(2) << cpuNow() - t_load
-            << " s CPU\n";
+  std::cout << "\n=== " << spec.name << ": " << run.L.truth.model->source << " ("
+            << ref0.p.map->dimension() << " joints, group '" << ref0.p.group << "'), "
+            << run.scenes.size() << " scene(s) of " << spec.scene_dir << "; loaded in "
+            << std::fixed << std::setprecision(2) << cpuNow() - t_load << " s CPU\n";
   std::cout << "  reference (truth) model: " << ref0.p.model->summary() << "\n";
   {
     std::mt19937_64 krng(a.seed + 7);
@@ -739,7 +777,8 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       if (!run.L.get(g)) continue;
       VariantProblem& vp = problemFor(*run.scenes[0], run.L, g, 0.0, &ref0);
       std::cout << "  " << geoName(g) << " model " << run.L.get(g)->model->source << ": "
-                << vp.p.model->summary() << "\n    " << kinematicsCheck(ref0, vp, krng, run.lo, run.hi) << "\n";
+                << vp.p.model->summary() << "\n    "
+                << kinematicsCheck(ref0, vp, krng, run.lo, run.hi) << "\n";
     }
   }
 
@@ -756,11 +795,13 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     const VariantProblem& ref = *tr.vp;
     const long ns = states_total / nsc + (si < states_total % nsc ? 1 : 0);
     const long nm = motions_total / nsc + (si < motions_total % nsc ? 1 : 0);
-    std::mt19937_64 rng(a.seed * 1000003ULL + std::uint64_t(robot_index) * 1009ULL + std::uint64_t(si));
+    std::mt19937_64 rng(a.seed * 1000003ULL + std::uint64_t(robot_index) * 1009ULL +
+                        std::uint64_t(si));
     const std::size_t d = run.lo.size();
     auto uniform = [&](std::vector<double>& g) {
       g.resize(d);
-      for (std::size_t i = 0; i < d; ++i) g[i] = std::uniform_real_distribution<double>(run.lo[i], run.hi[i])(rng);
+      for (std::size_t i = 0; i < d; ++i)
+        g[i] = std::uniform_real_distribution<double>(run.lo[i], run.hi[i])(rng);
     };
     q.resize(ref.nq());
     qa.resize(ref.nq());
@@ -786,7 +827,8 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       std::vector<double> dir(d);
       double nn = 0;
       for (auto& x : dir) x = std::normal_distribution<double>()(rng), nn += x * x;
-      const double len = (1.0 - std::uniform_real_distribution<double>()(rng)) * a.motion_length * run.extent;
+      const double len =
+          (1.0 - std::uniform_real_distribution<double>()(rng)) * a.motion_length * run.extent;
       mo.g1.resize(d);
       double reach = len;  // clipped where the motion would leave the joint limits
       for (std::size_t i = 0; i < d; ++i) {
@@ -814,18 +856,20 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     t_motions += std::count(ctx.motion_truth.begin(), ctx.motion_truth.end(), 1);
   }
   long n_states = 0, n_motions = 0;
-  for (auto& c : run.scenes) n_states += long(c->states.size()), n_motions += long(c->motions.size());
-  std::cout << "  " << n_states << " states (" << t_states << " colliding in the truth), " << n_motions
-            << " motions (" << t_motions << " colliding in the truth; motion truth: delta " << a.delta * 1e3
-            << " mm, " << truth_samples << " samples); truth computed in " << std::setprecision(1) << truth_cpu
+  for (auto& c : run.scenes)
+    n_states += long(c->states.size()), n_motions += long(c->motions.size());
+  std::cout << "  " << n_states << " states (" << t_states << " colliding in the truth), "
+            << n_motions << " motions (" << t_motions
+            << " colliding in the truth; motion truth: delta " << a.delta * 1e3 << " mm, "
+            << truth_samples << " samples); truth computed in " << std::setprecision(1) << truth_cpu
             << " s CPU\n";
 
   // Settings that this robot has a model for.
   std::vector<const Setting*> active;
   for (const auto& s : settings) {
     if (!run.L.get(s.geo)) {
-      std::cout << "  setting '" << s.name << "': no " << geoName(s.geo) << " model for " << spec.name
-                << " (not measured)\n";
+      std::cout << "  setting '" << s.name << "': no " << geoName(s.geo) << " model for "
+                << spec.name << " (not measured)\n";
       continue;
     }
     active.push_back(&s);
@@ -854,7 +898,8 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       }
       const std::size_t nq = vp.nq();
       in->qs.resize(ctx.states.size() * nq);
-      for (std::size_t i = 0; i < ctx.states.size(); ++i) vp.toQ(ctx.states[i].data(), &in->qs[i * nq]);
+      for (std::size_t i = 0; i < ctx.states.size(); ++i)
+        vp.toQ(ctx.states[i].data(), &in->qs[i * nq]);
       in->m0.resize(ctx.motions.size() * nq);
       in->m1.resize(ctx.motions.size() * nq);
       for (std::size_t i = 0; i < ctx.motions.size(); ++i) {
@@ -862,10 +907,13 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         vp.toQ(ctx.motions[i].g1.data(), &in->m1[i * nq]);
         double dist = 0;
         for (std::size_t k = 0; k < ctx.motions[i].g0.size(); ++k)
-          dist += (ctx.motions[i].g1[k] - ctx.motions[i].g0[k]) * (ctx.motions[i].g1[k] - ctx.motions[i].g0[k]);
+          dist += (ctx.motions[i].g1[k] - ctx.motions[i].g0[k]) *
+                  (ctx.motions[i].g1[k] - ctx.motions[i].g0[k]);
         // OMPL's DiscreteMotionValidator: ceil(distance / (resolution x maximum extent)) segments.
-        in->segs.push_back(s->resolution > 0 ? std::max(1L, long(std::ceil(std::sqrt(dist) / (s->resolution * run.extent))))
-                                             : 0);
+        in->segs.push_back(
+            s->resolution > 0
+                ? std::max(1L, long(std::ceil(std::sqrt(dist) / (s->resolution * run.extent))))
+                : 0);
       }
       v.push_back(std::move(in));
     }
@@ -939,7 +987,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     r.robot = spec.name;
     r.s = *s;
     r.model = s->geo == Geo::kSpheres || s->geo == Geo::kCapsules ? run.L.get(s->geo)->model->source
-                                                                 : run.L.truth.model->source;
+                                                                  : run.L.truth.model->source;
     r.model = fs::path(r.model).lexically_relative(a.shared + "/robots").string();
     r.scenes = int(nsc);
     const auto& as = ans_state.at(s->stateKey());
@@ -960,16 +1008,21 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
             std::vector<double> qv(tr.vp->nq());
             tr.vp->toQ(ctx.states[i].data(), qv.data());
             const Diagnosis dg = diagnose(*tr.vp, *tr.mesh, qv.data());
-            if (dg.fcl_gap) ++r.fcl_gap_claims;
-            else ++r.unexplained;
-            std::cout << "  " << (dg.fcl_gap ? "FCL claims a collision at a DSS-certified gap" : "** MISS **")
+            if (dg.fcl_gap)
+              ++r.fcl_gap_claims;
+            else
+              ++r.unexplained;
+            std::cout << "  "
+                      << (dg.fcl_gap ? "FCL claims a collision at a DSS-certified gap"
+                                     : "** MISS **")
                       << " (" << s->name << ", " << ctx.name << ", state " << i << "):\n"
                       << dg.text;
           }
         }
         r.false_alarms += !t && x;
         if (!t && x && tally_fa) {
-          const VariantProblem& vp = problemFor(*run.scenes[si], run.L, s->geo, 0.0, run.truths[si]->vp);
+          const VariantProblem& vp =
+              problemFor(*run.scenes[si], run.L, s->geo, 0.0, run.truths[si]->vp);
           std::vector<double> qv(vp.nq());
           vp.toQ(ctx.states[i].data(), qv.data());
           for (const auto& pname : collidingPairs(*vp.p.model, qv.data())) ++fa_pairs[pname];
@@ -980,8 +1033,10 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
       std::vector<std::pair<long, std::string>> top;
       for (const auto& [k, v] : fa_pairs) top.push_back({v, k});
       std::sort(top.rbegin(), top.rend());
-      std::cout << "  false alarms of '" << s->name << "' (" << r.false_alarms << " states), pairs most often involved:";
-      for (std::size_t k = 0; k < top.size() && k < 4; ++k) std::cout << (k ? ";" : "") << " " << top[k].second << " (" << top[k].first << ")";
+      std::cout << "  false alarms of '" << s->name << "' (" << r.false_alarms
+                << " states), pairs most often involved:";
+      for (std::size_t k = 0; k < top.size() && k < 4; ++k)
+        std::cout << (k ? ";" : "") << " " << top[k].second << " (" << top[k].first << ")";
       std::cout << "\n";
     }
     r.cap_hits = caps_state.at(s->stateKey());
@@ -1030,8 +1085,10 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         auto checker = std::make_shared<ValidityChecker>(p.si, makeSettingChecker(vp, r.s), p.map);
         og::SimpleSetup ss(p.si);
         ss.setStateValidityChecker(checker);
-        if (r.s.resolution > 0) p.si->setStateValidityCheckingResolution(r.s.resolution);
-        else p.si->setMotionValidator(makeContinuousMotionValidator(p, *checker));
+        if (r.s.resolution > 0)
+          p.si->setStateValidityCheckingResolution(r.s.resolution);
+        else
+          p.si->setMotionValidator(makeContinuousMotionValidator(p, *checker));
         ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
         ob::ScopedState<> s0(p.si->getStateSpace());
         const std::vector<double> g0 = p.map->groupValues(ctx.start);
@@ -1048,13 +1105,15 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         }
         ss.setGoal(goal);
         ss.setup();
-        if (!checker->isValid(s0.get()) || !checker->isValid(goal->getState(0))) ++r.plan_start_goal_invalid;
+        if (!checker->isValid(s0.get()) || !checker->isValid(goal->getState(0)))
+          ++r.plan_start_goal_invalid;
         ++r.plan_problems;
         const double c0 = cpuNow();
         const auto w0 = std::chrono::steady_clock::now();
         const ob::PlannerStatus st = ss.solve(a.quick ? std::min(a.plan_time, 2.0) : a.plan_time);
         const double cpu = cpuNow() - c0;
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
         const bool solved = st == ob::PlannerStatus::EXACT_SOLUTION;
         cpu_ms.push_back(solved ? cpu * 1e3 : INFINITY);
         wall_ms.push_back(solved ? wall * 1e3 : INFINITY);
@@ -1091,7 +1150,11 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
 std::string pct(long k, long n) {
   if (n <= 0) return "-";
   std::ostringstream os;
-  os << std::fixed << std::setprecision(k == 0 ? 0 : 100.0 * k / n < 0.1 ? 3 : 2) << 100.0 * double(k) / double(n) << "%";
+  os << std::fixed
+     << std::setprecision(k == 0                ? 0
+                          : 100.0 * k / n < 0.1 ? 3
+                                                : 2)
+     << 100.0 * double(k) / double(n) << "%";
   return os.str();
 }
 
@@ -1100,53 +1163,64 @@ void printTable(const std::vector<Row>& rows) {
   for (const auto& r : rows) {
     if (r.robot != robot) {
       robot = r.robot;
-      std::printf("\n%s: %ld states (%ld colliding in the truth), %ld motions (%ld colliding)\n", robot.c_str(),
-                  r.states, r.truth_states, r.motions, r.truth_motions);
-      std::printf("%-19s %9s %8s %8s %9s %9s %5s | %9s %8s %8s %9s | %6s %10s %6s\n", "setting", "us/state",
-                  "missed", "(rate)", "false al.", "(rate)", "caps", "us/motion", "missed", "(rate)", "false al.",
-                  "solved", "median ms", "bad");
+      std::printf("\n%s: %ld states (%ld colliding in the truth), %ld motions (%ld colliding)\n",
+                  robot.c_str(), r.states, r.truth_states, r.motions, r.truth_motions);
+      std::printf("%-19s %9s %8s %8s %9s %9s %5s | %9s %8s %8s %9s | %6s %10s %6s\n", "setting",
+                  "us/state", "missed", "(rate)", "false al.", "(rate)", "caps", "us/motion",
+                  "missed", "(rate)", "false al.", "solved", "median ms", "bad");
     }
-    std::printf("%-19s %9.3f %8ld %8s %9ld %9s %5llu | %9.2f %8ld %8s %9ld |", r.s.name.c_str(), r.us_state, r.missed,
-                pct(r.missed, r.truth_states).c_str(), r.false_alarms,
-                pct(r.false_alarms, r.states - r.truth_states).c_str(), (unsigned long long)r.cap_hits, r.us_motion,
-                r.m_missed, pct(r.m_missed, r.truth_motions).c_str(), r.m_false);
+    std::printf("%-19s %9.3f %8ld %8s %9ld %9s %5llu | %9.2f %8ld %8s %9ld |", r.s.name.c_str(),
+                r.us_state, r.missed, pct(r.missed, r.truth_states).c_str(), r.false_alarms,
+                pct(r.false_alarms, r.states - r.truth_states).c_str(),
+                (unsigned long long)r.cap_hits, r.us_motion, r.m_missed,
+                pct(r.m_missed, r.truth_motions).c_str(), r.m_false);
     if (r.measured_plan)
-      std::printf(" %2d/%-3d %10.1f %6d\n", r.plan_solved, r.plan_problems, r.plan_cpu_ms, r.plan_truth_colliding);
+      std::printf(" %2d/%-3d %10.1f %6d\n", r.plan_solved, r.plan_problems, r.plan_cpu_ms,
+                  r.plan_truth_colliding);
     else
       std::printf(" %6s %10s %6s\n", "-", "-", "-");
     if (r.fcl_gap_claims)
-      std::printf("    (of the %ld missed: %ld are FCL collisions at a DSS-certified gap, %ld unexplained)\n", r.missed,
-                  r.fcl_gap_claims, r.unexplained);
+      std::printf(
+          "    (of the %ld missed: %ld are FCL collisions at a DSS-certified gap, %ld "
+          "unexplained)\n",
+          r.missed, r.fcl_gap_claims, r.unexplained);
   }
   std::printf(
-      "\nmissed rate = missed / truth-colliding; false-alarm rate = false alarms / truth-free; caps = answers at the "
-      "iteration cap (state checks);\nplanning: solved/problems, median thread-CPU ms over problems (failures count "
+      "\nmissed rate = missed / truth-colliding; false-alarm rate = false alarms / truth-free; "
+      "caps = answers at the "
+      "iteration cap (state checks);\nplanning: solved/problems, median thread-CPU ms over "
+      "problems (failures count "
       "as slowest), bad = solution paths the truth finds colliding\n");
 }
 
 void writeCsv(const std::string& path, const std::vector<Row>& rows, const Args& a) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write");
-  out << "robot,setting,axis,geometry,model,mode,cap,padding_m,motion_check,scenes,states,truth_colliding_states,"
-         "us_per_state,state_missed,state_false_alarms,state_cap_hits,fcl_gap_claims,unexplained_misses,motions,"
-         "truth_colliding_motions,us_per_motion,motion_missed,motion_false_alarms,motion_cap_hits,plan_problems,"
-         "plan_solved,plan_median_cpu_ms,plan_median_wall_ms,plan_paths_truth_colliding,plan_start_or_goal_invalid,"
+  out << "robot,setting,axis,geometry,model,mode,cap,padding_m,motion_check,scenes,states,truth_"
+         "colliding_states,"
+         "us_per_state,state_missed,state_false_alarms,state_cap_hits,fcl_gap_claims,unexplained_"
+         "misses,motions,"
+         "truth_colliding_motions,us_per_motion,motion_missed,motion_false_alarms,motion_cap_hits,"
+         "plan_problems,"
+         "plan_solved,plan_median_cpu_ms,plan_median_wall_ms,plan_paths_truth_colliding,plan_start_"
+         "or_goal_invalid,"
          "delta_m,motion_length,reps,seed,command\n";
   out << std::setprecision(6);
   for (const auto& r : rows) {
-    out << r.robot << "," << r.s.name << "," << r.s.axis << "," << geoName(r.s.geo) << "," << r.model << ","
-        << r.s.modeName() << "," << r.s.capName() << "," << r.s.pad << "," << r.s.motionName() << "," << r.scenes
-        << "," << r.states << "," << r.truth_states << "," << r.us_state << "," << r.missed << "," << r.false_alarms
-        << "," << r.cap_hits << "," << r.fcl_gap_claims << "," << r.unexplained << "," << r.motions << ","
-        << r.truth_motions << "," << r.us_motion << "," << r.m_missed << "," << r.m_false << "," << r.m_cap_hits
+    out << r.robot << "," << r.s.name << "," << r.s.axis << "," << geoName(r.s.geo) << ","
+        << r.model << "," << r.s.modeName() << "," << r.s.capName() << "," << r.s.pad << ","
+        << r.s.motionName() << "," << r.scenes << "," << r.states << "," << r.truth_states << ","
+        << r.us_state << "," << r.missed << "," << r.false_alarms << "," << r.cap_hits << ","
+        << r.fcl_gap_claims << "," << r.unexplained << "," << r.motions << "," << r.truth_motions
+        << "," << r.us_motion << "," << r.m_missed << "," << r.m_false << "," << r.m_cap_hits
         << ",";
     if (r.measured_plan)
-      out << r.plan_problems << "," << r.plan_solved << "," << r.plan_cpu_ms << "," << r.plan_wall_ms << ","
-          << r.plan_truth_colliding << "," << r.plan_start_goal_invalid;
+      out << r.plan_problems << "," << r.plan_solved << "," << r.plan_cpu_ms << ","
+          << r.plan_wall_ms << "," << r.plan_truth_colliding << "," << r.plan_start_goal_invalid;
     else
       out << ",,,,,";
-    out << "," << a.delta << "," << a.motion_length << "," << (a.quick ? 1 : a.reps) << "," << a.seed << ",\""
-        << a.command << "\"\n";
+    out << "," << a.delta << "," << a.motion_length << "," << (a.quick ? 1 : a.reps) << ","
+        << a.seed << ",\"" << a.command << "\"\n";
   }
 }
 
@@ -1168,15 +1242,21 @@ int runTradeoff(int argc, char** argv) {
       const std::set<std::string> known = {"panda", "ur5", "iiwa"};
       if (a.robots.empty()) throw std::invalid_argument("--robots: empty list");
       for (const auto& r : a.robots)
-        if (!known.count(r)) throw std::invalid_argument("--robots: unknown robot '" + r + "' (panda, ur5, iiwa)");
-    } else if (o == "--states" || o == "--motions" || o == "--seed" || o == "--reps" || o == "--scenes-per-type") {
+        if (!known.count(r))
+          throw std::invalid_argument("--robots: unknown robot '" + r + "' (panda, ur5, iiwa)");
+    } else if (o == "--states" || o == "--motions" || o == "--seed" || o == "--reps" ||
+               o == "--scenes-per-type") {
       const std::string v = value();
       cmd << " " << v;
       const double x = parseNumber(o, v);
-      if (x < 0 || x != std::floor(x) || x > 1e9) throw std::invalid_argument(o + ": '" + v + "' is not a count");
-      if (o == "--states") a.states = long(x), states_set = true;
-      else if (o == "--motions") a.motions = long(x), motions_set = true;
-      else if (o == "--seed") a.seed = std::uint64_t(x);
+      if (x < 0 || x != std::floor(x) || x > 1e9)
+        throw std::invalid_argument(o + ": '" + v + "' is not a count");
+      if (o == "--states")
+        a.states = long(x), states_set = true;
+      else if (o == "--motions")
+        a.motions = long(x), motions_set = true;
+      else if (o == "--seed")
+        a.seed = std::uint64_t(x);
       else if (o == "--reps") {
         if (x < 1) throw std::invalid_argument("--reps must be at least 1");
         a.reps = int(x);
@@ -1184,8 +1264,10 @@ int runTradeoff(int argc, char** argv) {
         if (x < 1) throw std::invalid_argument("--scenes-per-type must be at least 1");
         a.scenes_per_type = int(x);
       }
-    } else if (o == "--csv") a.csv = value();
-    else if (o == "--shared") a.shared = value();
+    } else if (o == "--csv")
+      a.csv = value();
+    else if (o == "--shared")
+      a.shared = value();
     else if (o == "--settings") {
       const std::string v = value();
       cmd << " " << v;
@@ -1204,15 +1286,21 @@ int runTradeoff(int argc, char** argv) {
       cmd << " " << v;
       const double x = parseNumber(o, v);
       if (x <= 0) throw std::invalid_argument(o + " must be positive");
-      if (o == "--delta") a.delta = x;
-      else if (o == "--motion-length") a.motion_length = x;
-      else a.plan_time = x;
-    } else if (o == "--no-plan") a.plan = false;
-    else if (o == "--quick") a.quick = true;
+      if (o == "--delta")
+        a.delta = x;
+      else if (o == "--motion-length")
+        a.motion_length = x;
+      else
+        a.plan_time = x;
+    } else if (o == "--no-plan")
+      a.plan = false;
+    else if (o == "--quick")
+      a.quick = true;
     else if (o == "-h" || o == "--help") {
       std::cout << kUsage;
       return 0;
-    } else throw std::invalid_argument("unknown option '" + o + "'\n" + kUsage);
+    } else
+      throw std::invalid_argument("unknown option '" + o + "'\n" + kUsage);
   }
   if (a.quick) {
     if (!states_set) a.states = 300;
@@ -1224,7 +1312,8 @@ int runTradeoff(int argc, char** argv) {
   ompl::RNG::setSeed(std::uint_fast32_t(a.seed));
 
   if (!fs::is_directory(a.shared + "/robots")) {
-    std::cout << "tradeoff: skipping every robot: " << a.shared << "/robots not found (set --shared)\n";
+    std::cout << "tradeoff: skipping every robot: " << a.shared
+              << "/robots not found (set --shared)\n";
     if (!a.csv.empty()) writeCsv(a.csv, {}, a);
     return 0;
   }
@@ -1252,9 +1341,12 @@ int runTradeoff(int argc, char** argv) {
   for (const auto& r : rows)
     if (r.s.geo == Geo::kHull && r.s.mode == Mode::kExact && r.s.pad == 0.0)
       unexplained += r.unexplained, gaps += r.fcl_gap_claims;
-  if (gaps) std::cout << "note: FCL called " << gaps << " hull+exact-free state(s) colliding at a DSS-certified gap (listed above)\n";
+  if (gaps)
+    std::cout << "note: FCL called " << gaps
+              << " hull+exact-free state(s) colliding at a DSS-certified gap (listed above)\n";
   if (bar_failed) {
-    std::cout << "FAIL: hull+exact missed " << unexplained << " collision(s) of the mesh truth (listed above)\n";
+    std::cout << "FAIL: hull+exact missed " << unexplained
+              << " collision(s) of the mesh truth (listed above)\n";
     return 3;
   }
   return 0;
@@ -1262,8 +1354,9 @@ int runTradeoff(int argc, char** argv) {
 
 }  // namespace
 
-DSS_BENCH_SUBCOMMAND("tradeoff", "speed vs missed collisions and false alarms of checking settings on real robots",
-                     runTradeoff);
+DSS_BENCH_SUBCOMMAND(
+    "tradeoff", "speed vs missed collisions and false alarms of checking settings on real robots",
+    runTradeoff);
 
 }  // namespace bench
 }  // namespace dss

@@ -1,12 +1,12 @@
 #include "benchmark_log.h"
 
-#include <chrono>
-#include <sstream>
-#include <stdexcept>
-
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/SpaceInformation.h>
+
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
 
 #include "dss/planning/continuous_motion_validator.h"
 
@@ -24,12 +24,15 @@ void SwitchingChecker::setActive(const dss::ValidityChecker* checker) {
 
 bool SwitchingChecker::isValid(const ob::State* state) const {
   const dss::ValidityChecker* c = active_.load(std::memory_order_relaxed);
-  if (!c) throw std::logic_error("dss_plan: no active validity checker (a planner ran outside its wrapper)");
+  if (!c)
+    throw std::logic_error(
+        "dss_plan: no active validity checker (a planner ran outside its wrapper)");
   const auto t0 = std::chrono::steady_clock::now();
   const bool v = c->isValid(state);
-  ns_.fetch_add(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
-                    .count(),
-                std::memory_order_relaxed);
+  ns_.fetch_add(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+          .count(),
+      std::memory_order_relaxed);
   return v;
 }
 
@@ -41,7 +44,8 @@ double SwitchingChecker::clearance(const ob::State* state) const {
 CheckerBoundPlanner::CheckerBoundPlanner(ob::PlannerPtr inner,
                                          std::shared_ptr<dss::ValidityChecker> checker,
                                          std::shared_ptr<SwitchingChecker> switching)
-    : ob::Planner(inner->getSpaceInformation(), inner->getName() + "[" + checker->checker().name() + "]"),
+    : ob::Planner(inner->getSpaceInformation(),
+                  inner->getName() + "[" + checker->checker().name() + "]"),
       inner_(std::move(inner)),
       checker_(std::move(checker)),
       switching_(std::move(switching)) {
@@ -82,11 +86,15 @@ void CheckerBoundPlanner::setProblemDefinition(const ob::ProblemDefinitionPtr& p
   inner_->setProblemDefinition(pdef);
 }
 
-void CheckerBoundPlanner::getPlannerData(ob::PlannerData& data) const { inner_->getPlannerData(data); }
+void CheckerBoundPlanner::getPlannerData(ob::PlannerData& data) const {
+  inner_->getPlannerData(data);
+}
 
 void addRunProperties(const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
   const auto* bound = dynamic_cast<const CheckerBoundPlanner*>(planner.get());
-  if (!bound) throw std::runtime_error("dss_plan: benchmark planner " + planner->getName() + " has no checker");
+  if (!bound)
+    throw std::runtime_error("dss_plan: benchmark planner " + planner->getName() +
+                             " has no checker");
   const RunRecord& r = bound->lastRun();
   auto put = [&](const std::string& key, auto value) {
     std::ostringstream s;
@@ -96,7 +104,8 @@ void addRunProperties(const ob::PlannerPtr& planner, ompl::tools::Benchmark::Run
   };
   put("validity checks INTEGER", r.counters.checks);
   put("checking time REAL", r.checking_seconds);
-  put("us per check REAL", r.counters.checks ? r.checking_seconds * 1e6 / double(r.counters.checks) : 0.0);
+  put("us per check REAL",
+      r.counters.checks ? r.checking_seconds * 1e6 / double(r.counters.checks) : 0.0);
   put("invalid states INTEGER", r.counters.collisions + r.counters.invalid_input);
   put("narrow phase tests INTEGER", r.counters.pair_tests);
   put("motion checks INTEGER", r.motion_checks);

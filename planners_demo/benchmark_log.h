@@ -11,14 +11,14 @@
 // extra columns count the planner's own work only, not OMPL's path checks or simplification.
 #pragma once
 
+#include <ompl/base/Planner.h>
+#include <ompl/base/StateValidityChecker.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
-
-#include <ompl/base/Planner.h>
-#include <ompl/base/StateValidityChecker.h>
-#include <ompl/tools/benchmark/Benchmark.h>
 
 #include "dss/planning/validity_checker.h"
 
@@ -51,8 +51,7 @@ struct RunRecord {
 /// An OMPL planner bound to one validity checker; named "<planner>[<checker>]".
 class CheckerBoundPlanner : public ompl::base::Planner {
  public:
-  CheckerBoundPlanner(ompl::base::PlannerPtr inner,
-                      std::shared_ptr<dss::ValidityChecker> checker,
+  CheckerBoundPlanner(ompl::base::PlannerPtr inner, std::shared_ptr<dss::ValidityChecker> checker,
                       std::shared_ptr<SwitchingChecker> switching);
 
   ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;

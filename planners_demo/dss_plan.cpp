@@ -7,27 +7,10 @@
 // With --benchmark it runs ompl::tools::Benchmark instead (one experiment per problem, one
 // planner entry per planner and checker, e.g. RRTConnect[dss] and RRTConnect[fcl-hull]) and
 // writes OMPL benchmark logs for ompl_benchmark_statistics / Planner Arena (benchmark_log.h).
-#include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <ctime>
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iomanip>
-#include <iostream>
-#include <map>
-#include <regex>
-#include <set>
-#include <sstream>
-
-#include <unistd.h>
-
-#include <nlohmann/json.hpp>
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/goals/GoalStates.h>
+#include <ompl/config.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -46,9 +29,25 @@
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/sbl/pSBL.h>
 #include <ompl/tools/benchmark/Benchmark.h>
-#include <ompl/config.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
 
 #include "benchmark_log.h"
 #include "cli.h"
@@ -72,7 +71,8 @@ const char* kUsage =
     "           --motion discrete|continuous (discrete) --time SECONDS (10) --seed N (1)\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
     "           --check-time (report checking_time_s: two clock reads per state check)\n"
-    "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, 64)\n"
+    "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, "
+    "64)\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --path FILE (CSV of the solution; with several problems FILE.<problem>.csv)\n"
     "  --benchmark: one ompl::tools::Benchmark experiment per problem, one planner entry per\n"
@@ -116,7 +116,9 @@ class TimedChecker : public ob::StateValidityChecker {
   bool isValid(const ob::State* s) const override {
     const auto t0 = std::chrono::steady_clock::now();
     const bool v = inner_->isValid(s);
-    ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+    ns_ +=
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+            .count();
     return v;
   }
   double seconds() const { return double(ns_.load()) * 1e-9; }
@@ -150,13 +152,15 @@ struct Args {
 };
 
 // A comma list of names; an empty or repeated name is a usage error.
-std::vector<std::string> splitList(const dss::cli::ArgCursor& cli, const std::string& option, const std::string& v) {
+std::vector<std::string> splitList(const dss::cli::ArgCursor& cli, const std::string& option,
+                                   const std::string& v) {
   std::vector<std::string> out;
   std::stringstream ss(v);
   std::string item;
   while (std::getline(ss, item, ',')) {
     if (item.empty()) cli.error(option + ": empty name in list '" + v + "'");
-    if (std::find(out.begin(), out.end(), item) != out.end()) cli.error(option + ": '" + item + "' listed twice");
+    if (std::find(out.begin(), out.end(), item) != out.end())
+      cli.error(option + ": '" + item + "' listed twice");
     out.push_back(item);
   }
   if (out.empty() || v.back() == ',') cli.error(option + ": empty name in list '" + v + "'");
@@ -192,7 +196,8 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const Pr
   const dss::PlanRequest req = dss::loadPlanRequestYaml(files.request);
   dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
   const std::map<std::string, double> start = req.startState();
-  LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding), {}, {}};
+  LoadedProblem lp{
+      dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding), {}, {}};
   const dss::Problem& p = lp.p;
   {
     std::set<std::string> movable(p.map->jointNames().begin(), p.map->jointNames().end());
@@ -201,7 +206,8 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const Pr
     held.insert("virtual_joint");
     dss::checkRequestJoints(req, movable, held);
   }
-  for (const auto& w : p.warnings) std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
+  for (const auto& w : p.warnings)
+    std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
   lp.start = p.map->groupValues(start);
   for (const auto& gc : req.goals) {
     std::map<std::string, double> by_name = start;
@@ -231,7 +237,8 @@ void setStartAndGoals(og::SimpleSetup& ss, const LoadedProblem& lp) {
   ss.setGoal(goal);
 }
 
-Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files, bool readable) {
+Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files,
+                 bool readable) {
   LoadedProblem lp = loadProblem(a, robot, files);
   dss::Problem& p = lp.p;
   auto checker = dss::makeValidityChecker(p, checkerConfig(a, a.checker));
@@ -315,9 +322,10 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (!goal_valid) j["goal_invalid"] = true;
   std::cout << j.dump() << std::endl;
   if (readable) {
-    std::cout << "\n" << robot.model->name << " in " << files.scene << "\n  "
-              << p.model->summary() << "\n  group '" << p.group << "' (" << p.map->dimension()
-              << " joints), planner " << a.planner << ", checker " << checker->checker().name() << "\n  "
+    std::cout << "\n"
+              << robot.model->name << " in " << files.scene << "\n  " << p.model->summary()
+              << "\n  group '" << p.group << "' (" << p.map->dimension() << " joints), planner "
+              << a.planner << ", checker " << checker->checker().name() << "\n  "
               << (solved ? "solved" : "NOT solved") << " in " << t * 1e3 << " ms: path of "
               << path_states << " states, length " << length << " rad; " << counters.checks
               << " state checks (" << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
@@ -336,11 +344,13 @@ std::vector<ProblemFiles> listProblems(const std::string& dir) {
     if (!std::regex_match(name, m, re)) continue;
     const fs::path req = fs::path(dir) / ("request" + m[1].str() + ".yaml");
     if (!fs::exists(req)) {
-      std::cerr << "dss_plan: " << e.path().string() << ": no " << req.filename().string() << ": skipped\n";
+      std::cerr << "dss_plan: " << e.path().string() << ": no " << req.filename().string()
+                << ": skipped\n";
       continue;
     }
     const std::string stem = fs::path(dir).filename().string();
-    out.push_back({(stem.empty() ? std::string() : stem + "/") + m[1].str(), e.path().string(), req.string()});
+    out.push_back({(stem.empty() ? std::string() : stem + "/") + m[1].str(), e.path().string(),
+                   req.string()});
   }
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.name < y.name; });
   if (out.empty()) throw std::runtime_error(dir + ": no sceneNNNN.yaml/requestNNNN.yaml pairs");
@@ -393,7 +403,8 @@ double median(std::vector<double> v) {
 }
 
 // --benchmark: one OMPL Benchmark experiment per problem, written to its own log file.
-int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector<ProblemFiles>& problems) {
+int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
+                 const std::vector<ProblemFiles>& problems) {
   std::vector<std::string> logs;
   const bool tty = isatty(STDERR_FILENO) != 0;
   for (std::size_t k = 0; k < problems.size(); ++k) {
@@ -407,18 +418,21 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     setStartAndGoals(ss, lp);
 
     std::vector<std::shared_ptr<dss::ValidityChecker>> checkers;
-    for (const auto& name : a.checker_list) checkers.push_back(dss::makeValidityChecker(p, checkerConfig(a, name)));
+    for (const auto& name : a.checker_list)
+      checkers.push_back(dss::makeValidityChecker(p, checkerConfig(a, name)));
     switching->setActive(checkers.front().get());
     if (a.motion == "continuous")
-      p.si->setMotionValidator(dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
+      p.si->setMotionValidator(
+          dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
     for (const auto& c : checkers) {
       if (!c->isValid(ss.getProblemDefinition()->getStartState(0)))
-        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under " << c->checker().name() << "\n";
+        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under "
+                  << c->checker().name() << "\n";
       const auto* goals = ss.getGoal()->as<ob::GoalStates>();
       for (std::size_t g = 0; g < goals->getStateCount(); ++g)
         if (!c->isValid(goals->getState(g)))
-          std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g << " in collision under "
-                    << c->checker().name() << "\n";
+          std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g
+                    << " in collision under " << c->checker().name() << "\n";
     }
 
     InterleavedBenchmark b(ss, files.name);
@@ -426,10 +440,12 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     b.addExperimentParameter("self_padding", "REAL", std::to_string(a.self_padding));
     b.addExperimentParameter("continuous_motion", "BOOLEAN", a.motion == "continuous" ? "1" : "0");
     b.addExperimentParameter("dss_mode", "TEXT", dss::toString(a.dss_options.mode));
-    b.addExperimentParameter("dss_max_iterations", "INTEGER", std::to_string(a.dss_options.max_iterations));
+    b.addExperimentParameter("dss_max_iterations", "INTEGER",
+                             std::to_string(a.dss_options.max_iterations));
     for (const auto& planner : a.planner_list)
       for (const auto& c : checkers)
-        b.addPlanner(std::make_shared<dss_plan::CheckerBoundPlanner>(planners().at(planner)(p.si), c, switching));
+        b.addPlanner(std::make_shared<dss_plan::CheckerBoundPlanner>(planners().at(planner)(p.si),
+                                                                     c, switching));
     // Paired seeds: before run j of every entry, OMPL's seed generator restarts from seed + j, so
     // the sampler the planner allocates for that run draws the same states for every checker
     // (RRTConnect[dss] and RRTConnect[fcl-hull] then explore identically wherever the checkers
@@ -442,19 +458,21 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
     });
     std::size_t done = 0;
     const std::size_t total = a.planner_list.size() * checkers.size() * a.runs;
-    b.setPostRunEvent([&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
-      dss_plan::addRunProperties(planner, run);
-      ++done;
-      if (tty && (done % checkers.size() == 0 || done == total))
-        std::cerr << "\r[" << k + 1 << "/" << problems.size() << "] " << files.name << ": run " << done << " of "
-                  << total << std::flush;
-    });
+    b.setPostRunEvent(
+        [&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
+          dss_plan::addRunProperties(planner, run);
+          ++done;
+          if (tty && (done % checkers.size() == 0 || done == total))
+            std::cerr << "\r[" << k + 1 << "/" << problems.size() << "] " << files.name << ": run "
+                      << done << " of " << total << std::flush;
+        });
 
     ompl::tools::Benchmark::Request req(a.time, 4096.0, a.runs, 0.05, /*displayProgress=*/false,
                                         /*saveConsoleOutput=*/false, /*simplify=*/true);
     b.benchmark(req);
     if (tty) std::cerr << "\r";
-    std::cerr << "[" << k + 1 << "/" << problems.size() << "] " << files.name << ": " << total << " runs done\n";
+    std::cerr << "[" << k + 1 << "/" << problems.size() << "] " << files.name << ": " << total
+              << " runs done\n";
     const std::string log = logFileFor(a, files, problems.size());
     {
       std::ostringstream text;
@@ -464,9 +482,10 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot, const std::vector
       // macros so that ompl_benchmark_statistics records "OMPL 1.5.2" (Planner Arena shows it).
       const std::string bare = "OMPL version \n";
       if (body.compare(0, bare.size(), bare) == 0)
-        body.replace(0, bare.size(), "OMPL version " + std::to_string(OMPL_MAJOR_VERSION) + "." +
-                                         std::to_string(OMPL_MINOR_VERSION) + "." +
-                                         std::to_string(OMPL_PATCH_VERSION) + "\n");
+        body.replace(0, bare.size(),
+                     "OMPL version " + std::to_string(OMPL_MAJOR_VERSION) + "." +
+                         std::to_string(OMPL_MINOR_VERSION) + "." +
+                         std::to_string(OMPL_PATCH_VERSION) + "\n");
       std::ofstream out(log);
       out << body;
       out.close();
@@ -513,35 +532,62 @@ int run(int argc, char** argv) {
   bool checker_given = false, runs_given = false, log_given = false;
   dss::cli::ArgCursor cli(argc, argv, "dss_plan", kUsage);
   while (cli.next()) {
-    if (cli.option("--robot")) a.robot = cli.value();
-    else if (cli.option("--srdf")) a.srdf = cli.value();
-    else if (cli.option("--scene")) a.scene = cli.value();
-    else if (cli.option("--request")) a.request = cli.value();
-    else if (cli.option("--problems")) a.problems = cli.value();
-    else if (cli.option("--planner")) a.planner = cli.value();
-    else if (cli.option("--checker")) a.checker = cli.value(), checker_given = true;
-    else if (cli.option("--motion")) a.motion = cli.value();
-    else if (cli.option("--time")) a.time = cli.number(1e-6, 1e6);
-    else if (cli.option("--seed")) a.seed = static_cast<unsigned long>(cli.integer(0, 4294967295));
-    else if (cli.option("--padding")) a.padding = cli.number(0.0, 1e3);
-    else if (cli.option("--self-padding")) a.self_padding = cli.number(0.0, 1e3);
-    else if (cli.option("--resolution")) a.resolution = cli.number(0.0, 1.0);
-    else if (cli.option("--path")) a.path = cli.value();
-    else if (cli.flag("--simplify")) a.simplify = true;
-    else if (cli.flag("--check-time")) a.check_time = true;
-    else if (cli.option("--motion-min-fraction")) a.min_fraction = cli.number(1e-12, 1.0);
+    if (cli.option("--robot"))
+      a.robot = cli.value();
+    else if (cli.option("--srdf"))
+      a.srdf = cli.value();
+    else if (cli.option("--scene"))
+      a.scene = cli.value();
+    else if (cli.option("--request"))
+      a.request = cli.value();
+    else if (cli.option("--problems"))
+      a.problems = cli.value();
+    else if (cli.option("--planner"))
+      a.planner = cli.value();
+    else if (cli.option("--checker"))
+      a.checker = cli.value(), checker_given = true;
+    else if (cli.option("--motion"))
+      a.motion = cli.value();
+    else if (cli.option("--time"))
+      a.time = cli.number(1e-6, 1e6);
+    else if (cli.option("--seed"))
+      a.seed = static_cast<unsigned long>(cli.integer(0, 4294967295));
+    else if (cli.option("--padding"))
+      a.padding = cli.number(0.0, 1e3);
+    else if (cli.option("--self-padding"))
+      a.self_padding = cli.number(0.0, 1e3);
+    else if (cli.option("--resolution"))
+      a.resolution = cli.number(0.0, 1.0);
+    else if (cli.option("--path"))
+      a.path = cli.value();
+    else if (cli.flag("--simplify"))
+      a.simplify = true;
+    else if (cli.flag("--check-time"))
+      a.check_time = true;
+    else if (cli.option("--motion-min-fraction"))
+      a.min_fraction = cli.number(1e-12, 1.0);
     else if (cli.option("--mode")) {
       const std::string m = cli.value();
-      if (m == "exact") a.dss_options.mode = dss::Mode::kExact;
-      else if (m == "double") a.dss_options.mode = dss::Mode::kDouble;
-      else if (m == "float") a.dss_options.mode = dss::Mode::kFloat;
-      else cli.error("--mode: expected exact, double or float, got '" + m + "'");
-    } else if (cli.option("--max-iterations")) a.dss_options.max_iterations = static_cast<int>(cli.integer(1, 1000000));
-    else if (cli.flag("--benchmark")) a.benchmark = true;
-    else if (cli.option("--runs")) a.runs = static_cast<unsigned>(cli.integer(1, 1000000)), runs_given = true;
-    else if (cli.option("--log")) a.log = cli.value(), log_given = true;
-    else if (cli.flag("--demo")) a.demo = true;
-    else cli.unknown();
+      if (m == "exact")
+        a.dss_options.mode = dss::Mode::kExact;
+      else if (m == "double")
+        a.dss_options.mode = dss::Mode::kDouble;
+      else if (m == "float")
+        a.dss_options.mode = dss::Mode::kFloat;
+      else
+        cli.error("--mode: expected exact, double or float, got '" + m + "'");
+    } else if (cli.option("--max-iterations"))
+      a.dss_options.max_iterations = static_cast<int>(cli.integer(1, 1000000));
+    else if (cli.flag("--benchmark"))
+      a.benchmark = true;
+    else if (cli.option("--runs"))
+      a.runs = static_cast<unsigned>(cli.integer(1, 1000000)), runs_given = true;
+    else if (cli.option("--log"))
+      a.log = cli.value(), log_given = true;
+    else if (cli.flag("--demo"))
+      a.demo = true;
+    else
+      cli.unknown();
   }
   if (a.benchmark && !checker_given) a.checker = "dss,fcl-hull";
   a.planner_list = splitList(cli, "--planner", a.planner);
@@ -572,13 +618,16 @@ int run(int argc, char** argv) {
     const std::string root = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
     a.robot = root + "/dss_arm7.urdf";
     a.srdf = root + "/dss_arm7.srdf";
-    problems.push_back({"dss_arm7/shelf", root + "/scenes/shelf.yaml", root + "/scenes/shelf_request.yaml"});
+    problems.push_back(
+        {"dss_arm7/shelf", root + "/scenes/shelf.yaml", root + "/scenes/shelf_request.yaml"});
   } else {
     if (a.robot.empty()) cli.error("--robot is required");
-    if (!a.problems.empty()) problems = listProblems(a.problems);
+    if (!a.problems.empty())
+      problems = listProblems(a.problems);
     else if (!a.request.empty())
       problems.push_back({fs::path(a.request).stem().string(), a.scene, a.request});
-    else cli.error("--request or --problems is required");
+    else
+      cli.error("--request or --problems is required");
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(a.seed);
@@ -598,11 +647,12 @@ int run(int argc, char** argv) {
   }
   std::sort(times.begin(), times.end());
   const double median = times[times.size() / 2];
-  const double p95 = times[std::min(times.size() - 1, std::size_t(std::ceil(0.95 * times.size())) - 1)];
+  const double p95 =
+      times[std::min(times.size() - 1, std::size_t(std::ceil(0.95 * times.size())) - 1)];
   std::ostream& sum = a.demo ? std::cout : std::cerr;
   sum << "summary: solved " << solved << " of " << problems.size() << " (" << a.planner << ", "
-      << a.checker << ", seed " << a.seed << "); planning time median " << median * 1e3 << " ms, p95 "
-      << p95 * 1e3 << " ms\n";
+      << a.checker << ", seed " << a.seed << "); planning time median " << median * 1e3
+      << " ms, p95 " << p95 * 1e3 << " ms\n";
   return solved == int(problems.size()) ? 0 : 3;
 }
 

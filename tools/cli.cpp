@@ -27,9 +27,12 @@ std::string formatNumber(double x) {
 std::string expected(const char* kind, const std::string& min, const std::string& max, bool has_min,
                      bool has_max) {
   std::string s = kind;
-  if (has_min && has_max) s += " in [" + min + ", " + max + "]";
-  else if (has_min) s += " >= " + min;
-  else if (has_max) s += " <= " + max;
+  if (has_min && has_max)
+    s += " in [" + min + ", " + max + "]";
+  else if (has_min)
+    s += " >= " + min;
+  else if (has_max)
+    s += " <= " + max;
   return s;
 }
 
@@ -41,7 +44,8 @@ void usageError(const char* program, const std::string& what) {
 }
 
 std::optional<double> parseNumber(const char* text, double min, double max) {
-  if (*text == '\0' || std::isspace(static_cast<unsigned char>(*text)) || isHex(text)) return std::nullopt;
+  if (*text == '\0' || std::isspace(static_cast<unsigned char>(*text)) || isHex(text))
+    return std::nullopt;
   char* end = nullptr;
   errno = 0;
   const double x = std::strtod(text, &end);
@@ -123,9 +127,11 @@ const char* ArgCursor::value() {
 double ArgCursor::number(double min, double max) {
   const char* text = value();
   if (const auto x = parseNumber(text, min, max)) return *x;
-  const double lowest = std::numeric_limits<double>::lowest(), highest = std::numeric_limits<double>::max();
+  const double lowest = std::numeric_limits<double>::lowest(),
+               highest = std::numeric_limits<double>::max();
   error(std::string(name_) + ": expected " +
-        expected("a finite number", formatNumber(min), formatNumber(max), min > lowest, max < highest) +
+        expected("a finite number", formatNumber(min), formatNumber(max), min > lowest,
+                 max < highest) +
         ", got '" + text + "'");
 }
 
@@ -134,7 +140,8 @@ long long ArgCursor::integer(long long min, long long max) {
   if (const auto x = parseInteger(text, min, max)) return *x;
   error(std::string(name_) + ": expected " +
         expected("an integer", std::to_string(min), std::to_string(max),
-                 min > std::numeric_limits<long long>::min(), max < std::numeric_limits<long long>::max()) +
+                 min > std::numeric_limits<long long>::min(),
+                 max < std::numeric_limits<long long>::max()) +
         ", got '" + text + "'");
 }
 

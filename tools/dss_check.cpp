@@ -2,19 +2,19 @@
 // or several checkers. stdout: 1/0 per state for the first checker; stderr: one JSON summary
 // per checker (states, valid, median microseconds per state over repetitions, disagreements
 // against the first checker). --describe prints the model as JSON instead.
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
-
-#include <nlohmann/json.hpp>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include "cli.h"
 #include "dss/checker/fcl_checker.h"
@@ -32,7 +32,8 @@ constexpr long long kMaxThreads = 1024;
 const char* kUsage =
     "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
     "                 (--states FILE.csv | --random N [--seed S])\n"
-    "                 [--checker dss|fcl-hull|fcl-mesh[:sweep][,...]] [--padding r] [--self-padding r]\n"
+    "                 [--checker dss|fcl-hull|fcl-mesh[:sweep][,...]] [--padding r] "
+    "[--self-padding r]\n"
     "                 [--repeat K] [--describe]\n"
     "                 [--mode exact|double|float] [--no-obb-stage] [--threads N]\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
@@ -75,12 +76,15 @@ Csv readCsv(const std::string& path) {
     if (csv.names.empty()) {
       csv.names = cells;
       for (const auto& n : csv.names)
-        if (n.empty()) throw std::runtime_error(path + ":" + std::to_string(lineno) + ": empty joint name in header");
+        if (n.empty())
+          throw std::runtime_error(path + ":" + std::to_string(lineno) +
+                                   ": empty joint name in header");
       continue;
     }
     if (cells.size() != csv.names.size())
-      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": " + std::to_string(cells.size()) +
-                               " values, header has " + std::to_string(csv.names.size()));
+      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": " +
+                               std::to_string(cells.size()) + " values, header has " +
+                               std::to_string(csv.names.size()));
     std::vector<double> row;
     for (std::size_t i = 0; i < cells.size(); ++i) {
       char* end = nullptr;
@@ -122,7 +126,8 @@ nlohmann::json describe(const dss::Problem& p) {
       const auto& el = m.elements()[e];
       json balls = json::array();  // inner balls (shape frame): x, y, z, radius
       for (int k = 0; k < el.num_inner; ++k)
-        balls.push_back({el.inner_S[k].x(), el.inner_S[k].y(), el.inner_S[k].z(), el.inner_S[k].w()});
+        balls.push_back(
+            {el.inner_S[k].x(), el.inner_S[k].y(), el.inner_S[k].z(), el.inner_S[k].w()});
       x["inner_balls"] = balls;
       els.push_back(x);
     }
@@ -141,7 +146,8 @@ nlohmann::json describe(const dss::Problem& p) {
   }
   j["joints"] = joints;
   json obs = json::array();
-  for (const auto& o : m.scene().obstacles) obs.push_back({{"name", o.name}, {"shape", dss::describeShape(o.shape)}});
+  for (const auto& o : m.scene().obstacles)
+    obs.push_back({{"name", o.name}, {"shape", dss::describeShape(o.shape)}});
   j["obstacles_kept"] = obs;
   j["obstacles_total"] = m.obstaclesBefore();
   json pairs = json::array();
@@ -149,7 +155,8 @@ nlohmann::json describe(const dss::Problem& p) {
     pairs.push_back({r.links[m.slots()[sp.a].link].name, r.links[m.slots()[sp.b].link].name});
   j["self_pairs"] = pairs;
   const dss::ClearanceGrid& grid = m.clearanceGrid();
-  j["clearance_grid"] = {{"voxels", grid.voxels()}, {"voxel_size", grid.voxelSize()},
+  j["clearance_grid"] = {{"voxels", grid.voxels()},
+                         {"voxel_size", grid.voxelSize()},
                          {"origin", {grid.origin().x(), grid.origin().y(), grid.origin().z()}}};
   j["robot_scene_pairs"] = m.scenePairs();
   j["robot_scene_pairs_total"] = m.scenePairsBefore();
@@ -170,28 +177,44 @@ int run(int argc, char** argv) {
   int threads = 1;
   dss::cli::ArgCursor cli(argc, argv, "dss_check", kUsage);
   while (cli.next()) {
-    if (cli.option("--robot")) robot = cli.value();
-    else if (cli.option("--srdf")) srdf = cli.value();
-    else if (cli.option("--scene")) scene_path = cli.value();
-    else if (cli.option("--group")) group = cli.value();
-    else if (cli.option("--states")) states = cli.value();
-    else if (cli.option("--checker")) checkers = cli.value();
-    else if (cli.option("--padding")) padding = cli.number(0, kMaxPadding);
-    else if (cli.option("--self-padding")) self_padding = cli.number(0, kMaxPadding);
-    else if (cli.option("--random")) random_n = cli.integer(1, kMaxCount);
-    else if (cli.option("--seed")) seed = static_cast<unsigned long>(cli.integer(0, kMaxSeed));
-    else if (cli.option("--repeat")) repeat = static_cast<int>(cli.integer(0, kMaxCount));
-    else if (cli.flag("--describe")) do_describe = true;
+    if (cli.option("--robot"))
+      robot = cli.value();
+    else if (cli.option("--srdf"))
+      srdf = cli.value();
+    else if (cli.option("--scene"))
+      scene_path = cli.value();
+    else if (cli.option("--group"))
+      group = cli.value();
+    else if (cli.option("--states"))
+      states = cli.value();
+    else if (cli.option("--checker"))
+      checkers = cli.value();
+    else if (cli.option("--padding"))
+      padding = cli.number(0, kMaxPadding);
+    else if (cli.option("--self-padding"))
+      self_padding = cli.number(0, kMaxPadding);
+    else if (cli.option("--random"))
+      random_n = cli.integer(1, kMaxCount);
+    else if (cli.option("--seed"))
+      seed = static_cast<unsigned long>(cli.integer(0, kMaxSeed));
+    else if (cli.option("--repeat"))
+      repeat = static_cast<int>(cli.integer(0, kMaxCount));
+    else if (cli.flag("--describe"))
+      do_describe = true;
     else if (cli.option("--mode")) {
       mode = cli.value();
       if (mode != "exact" && mode != "double" && mode != "float")
         cli.error("--mode: expected exact, double or float, got '" + mode + "'");
-    } else if (cli.flag("--no-obb-stage")) box_stage = false;
-    else if (cli.option("--threads")) threads = static_cast<int>(cli.integer(1, kMaxThreads));
-    else cli.unknown();
+    } else if (cli.flag("--no-obb-stage"))
+      box_stage = false;
+    else if (cli.option("--threads"))
+      threads = static_cast<int>(cli.integer(1, kMaxThreads));
+    else
+      cli.unknown();
   }
   if (robot.empty()) cli.error("--robot is required");
-  if (!do_describe && states.empty() && random_n <= 0) cli.error("--states or --random is required");
+  if (!do_describe && states.empty() && random_n <= 0)
+    cli.error("--states or --random is required");
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
@@ -217,14 +240,16 @@ int run(int argc, char** argv) {
       auto it = std::find(names.begin(), names.end(), csv.names[c]);
       if (it == names.end()) {
         if (r.model->jointIndex(csv.names[c]) < 0)
-          throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of " + robot);
-        throw std::runtime_error(states + ": header column '" + csv.names[c] + "' is not a joint of group '" +
-                                 p.group + "'");
+          throw std::runtime_error(states + ": header column '" + csv.names[c] +
+                                   "' is not a joint of " + robot);
+        throw std::runtime_error(states + ": header column '" + csv.names[c] +
+                                 "' is not a joint of group '" + p.group + "'");
       }
       column[it - names.begin()] = int(c);
     }
     for (std::size_t i = 0; i < names.size(); ++i)
-      if (column[i] < 0) throw std::runtime_error(states + ": header lacks group joint '" + names[i] + "'");
+      if (column[i] < 0)
+        throw std::runtime_error(states + ": header lacks group joint '" + names[i] + "'");
     std::vector<double> g(names.size());
     for (const auto& row : csv.rows) {
       for (std::size_t i = 0; i < names.size(); ++i) g[i] = row[column[i]];
@@ -264,9 +289,12 @@ int run(int argc, char** argv) {
     }
     cfg.scene_padding = padding;
     cfg.self_padding = self_padding;
-    if (mode == "exact") cfg.dss_options.mode = dss::Mode::kExact;
-    else if (mode == "double") cfg.dss_options.mode = dss::Mode::kDouble;
-    else cfg.dss_options.mode = dss::Mode::kFloat;  // checked when parsed
+    if (mode == "exact")
+      cfg.dss_options.mode = dss::Mode::kExact;
+    else if (mode == "double")
+      cfg.dss_options.mode = dss::Mode::kDouble;
+    else
+      cfg.dss_options.mode = dss::Mode::kFloat;  // checked when parsed
     cfg.obb_stage = box_stage;
     auto checker = dss::makeValidityChecker(p, cfg);
     built.push_back(checker);
@@ -289,7 +317,8 @@ int run(int argc, char** argv) {
         const std::size_t block = (st.size() + threads - 1) / threads;
         for (int t = 0; t < threads; ++t)
           pool.emplace_back([&, t] {
-            const std::size_t b = std::min(st.size(), t * block), e = std::min(st.size(), b + block);
+            const std::size_t b = std::min(st.size(), t * block),
+                              e = std::min(st.size(), b + block);
             for (std::size_t i = b; i < e; ++i) v[i] = checker.isValid(st[i]);
           });
         for (auto& th : pool) th.join();
@@ -298,8 +327,9 @@ int run(int argc, char** argv) {
       const auto t1 = std::chrono::steady_clock::now();
       if (rep < 0) continue;  // warm-up
       // With threads, only wall time means anything.
-      per_state[k].push_back(threads <= 1 ? (c1 - c0) * 1e6 / n
-                                          : std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
+      per_state[k].push_back(threads <= 1
+                                 ? (c1 - c0) * 1e6 / n
+                                 : std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
       per_state_wall[k].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / n);
     }
   }
@@ -312,7 +342,9 @@ int run(int argc, char** argv) {
     for (std::size_t i = 0; i < per_state[k].size() && i < per_state[0].size(); ++i)
       if (per_state[0][i] > 0.0) r.push_back(per_state[k][i] / per_state[0][i]);
     std::sort(r.begin(), r.end());
-    if (!r.empty()) paired_ratio[k] = r.size() % 2 ? r[r.size() / 2] : 0.5 * (r[r.size() / 2 - 1] + r[r.size() / 2]);
+    if (!r.empty())
+      paired_ratio[k] =
+          r.size() % 2 ? r[r.size() / 2] : 0.5 * (r[r.size() / 2 - 1] + r[r.size() / 2]);
   }
   for (std::size_t k = 0; k < nc; ++k) {
     const auto& checker = built[k];
@@ -325,7 +357,8 @@ int run(int argc, char** argv) {
     j["states"] = st.size();
     j["valid"] = std::count(valid[k].begin(), valid[k].end(), 1);
     j["us_per_state"] = per_state[k].empty() ? 0.0 : per_state[k][per_state[k].size() / 2];
-    j["us_per_state_wall"] = per_state_wall[k].empty() ? 0.0 : per_state_wall[k][per_state_wall[k].size() / 2];
+    j["us_per_state_wall"] =
+        per_state_wall[k].empty() ? 0.0 : per_state_wall[k][per_state_wall[k].size() / 2];
     j["us_per_state_min"] = per_state[k].empty() ? 0.0 : per_state[k].front();
     j["timer"] = threads <= 1 ? "thread CPU time (wall time in us_per_state_wall)" : "wall time";
     j["threads"] = threads;

@@ -13,7 +13,8 @@
 
 namespace {
 
-const char* const kUsage = R"(usage: dss_disabled_pairs robot.urdf [samples] [seed] [--package name=dir ...]
+const char* const kUsage =
+    R"(usage: dss_disabled_pairs robot.urdf [samples] [seed] [--package name=dir ...]
 
 Prints SRDF <disable_collisions> lines for the URDF, as the MoveIt Setup Assistant does:
 adjacent pairs, pairs in collision at the default state, and pairs never or always in
@@ -39,7 +40,8 @@ int main(int argc, char** argv) {
     if (cli.option("--package")) {
       const std::string kv = cli.value();
       const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) cli.error("--package: expected name=dir, got '" + kv + "'");
+      if (eq == std::string::npos || eq == 0)
+        cli.error("--package: expected name=dir, got '" + kv + "'");
       load.mesh_paths.package_dirs[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else if (positional == 0 && cli.positional("robot.urdf")) {
       urdf = cli.value();
@@ -58,8 +60,8 @@ int main(int argc, char** argv) {
   try {
     const dss::RobotModel model = dss::loadUrdf(urdf, load);
     const auto result = dss::computeDisabledPairs(model, opt);
-    std::cout << "  <!-- dss_disabled_pairs: " << result.samples << " samples, seed " << opt.seed << ", "
-              << result.pairs.size() << " pairs disabled -->\n"
+    std::cout << "  <!-- dss_disabled_pairs: " << result.samples << " samples, seed " << opt.seed
+              << ", " << result.pairs.size() << " pairs disabled -->\n"
               << result.toSrdf();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

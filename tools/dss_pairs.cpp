@@ -88,10 +88,14 @@ Args parseArgs(int argc, char** argv) {
       algo_list = cli.value();
     } else if (cli.option("--mode")) {
       const std::string m = cli.value();
-      if (m == "exact") args.mode = dss::Mode::kExact;
-      else if (m == "double") args.mode = dss::Mode::kDouble;
-      else if (m == "float") args.mode = dss::Mode::kFloat;
-      else cli.error("--mode: expected exact, double or float, got '" + m + "'");
+      if (m == "exact")
+        args.mode = dss::Mode::kExact;
+      else if (m == "double")
+        args.mode = dss::Mode::kDouble;
+      else if (m == "float")
+        args.mode = dss::Mode::kFloat;
+      else
+        cli.error("--mode: expected exact, double or float, got '" + m + "'");
     } else if (cli.option("--max-iterations")) {
       args.max_iterations = static_cast<int>(cli.integer(1, 1000000000));
     } else if (cli.option("--padding")) {
@@ -112,11 +116,16 @@ Args parseArgs(int argc, char** argv) {
   std::string name;
   while (std::getline(ss, name, ',')) {
     Algo algo;
-    if (name == "dss") algo = Algo::kDss;
-    else if (name == "gjk") algo = Algo::kGjk;
-    else if (name == "hybrid") algo = Algo::kHybrid;
-    else if (name == "fcl") algo = Algo::kFcl;
-    else cli.error("--algo: expected dss, gjk, hybrid or fcl, got '" + name + "'");
+    if (name == "dss")
+      algo = Algo::kDss;
+    else if (name == "gjk")
+      algo = Algo::kGjk;
+    else if (name == "hybrid")
+      algo = Algo::kHybrid;
+    else if (name == "fcl")
+      algo = Algo::kFcl;
+    else
+      cli.error("--algo: expected dss, gjk, hybrid or fcl, got '" + name + "'");
     if (std::find(args.algos.begin(), args.algos.end(), algo) != args.algos.end())
       cli.error("--algo: '" + name + "' given twice");
     args.algos.push_back(algo);
@@ -144,8 +153,7 @@ struct Answers {
   std::vector<char> fcl;             // fcl: intersect per pair
 };
 
-void decide(Algo algo, const Args& args, const dss::Options& opt, const Workload& w,
-            Answers& out) {
+void decide(Algo algo, const Args& args, const dss::Options& opt, const Workload& w, Answers& out) {
   if (algo == Algo::kFcl) {
     out.fcl.resize(w.fcl.size());
     for (std::size_t i = 0; i < w.fcl.size(); ++i)
@@ -197,7 +205,8 @@ void timeRuns(const Args& args, const dss::Options& opt, const Workload& w) {
   for (std::size_t k = 0; k < n_algos; ++k) {
     std::vector<double> v = ns_per_pair[k];
     std::sort(v.begin(), v.end());
-    const double median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    const double median =
+        v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     const Algo algo = args.algos[k];
     std::size_t cap_hits = 0;
     double mean_iterations = 0;

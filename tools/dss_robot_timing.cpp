@@ -1,8 +1,8 @@
 // Measures how long loading a URDF (with meshes and hulls) takes and what forward kinematics
 // costs per state. Usage: dss_robot_timing [robot.urdf] [states]
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <limits>
 #include <random>
 #include <string>
@@ -55,9 +55,10 @@ int main(int argc, char** argv) {
       std::printf("load %d: %.2f ms\n", i, ms);
       best_ms = std::min(best_ms, ms);
     }
-    std::printf("%s: %zu links, %zu joints, %zu active, %zu collision elements; load best %.2f ms\n",
-                path.c_str(), model.links.size(), model.joints.size(), model.numActiveJoints(),
-                model.numCollisionElements(), best_ms);
+    std::printf(
+        "%s: %zu links, %zu joints, %zu active, %zu collision elements; load best %.2f ms\n",
+        path.c_str(), model.links.size(), model.joints.size(), model.numActiveJoints(),
+        model.numCollisionElements(), best_ms);
     const dss::Kinematics kin(model);
     std::vector<Eigen::Isometry3d> X(model.links.size(), Eigen::Isometry3d::Identity());
     std::mt19937_64 rng(7);
@@ -75,8 +76,10 @@ int main(int argc, char** argv) {
     }
     const double us = std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / states;
     const double cpu_us = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / states;
-    std::printf("FK: %zu links updated per state, %.4f us wall, %.4f us CPU per state (%d states, checksum %.3f)\n",
-                kin.updatedLinks().size(), us, cpu_us, states, sink);
+    std::printf(
+        "FK: %zu links updated per state, %.4f us wall, %.4f us CPU per state (%d states, checksum "
+        "%.3f)\n",
+        kin.updatedLinks().size(), us, cpu_us, states, sink);
     // FK plus world-space bounding volumes: one sphere per link with geometry, enclosing its
     // elements (centre in the link frame, radius from the elements' magnitudes), moved to world.
     std::vector<int> geo_links;
@@ -89,7 +92,8 @@ int main(int argc, char** argv) {
       for (const auto& e : els) c += e.X_LS.translation();
       c /= double(els.size());
       double r = 0;
-      for (const auto& e : els) r = std::max(r, (e.X_LS.translation() - c).norm() + dss::shapeMagnitude(e.shape));
+      for (const auto& e : els)
+        r = std::max(r, (e.X_LS.translation() - c).norm() + dss::shapeMagnitude(e.shape));
       geo_links.push_back(int(l));
       c_L.push_back(c);
       r_L.push_back(r);

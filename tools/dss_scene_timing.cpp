@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
     const double med = ms[ms.size() / 2];
     total_median += med;
     worst_median = std::max(worst_median, med);
-    if (!quiet) std::printf("%-70s %3zu obstacles  median %.3f ms  min %.3f ms\n", f.c_str(), n, med, ms[0]);
+    if (!quiet)
+      std::printf("%-70s %3zu obstacles  median %.3f ms  min %.3f ms\n", f.c_str(), n, med, ms[0]);
   }
   std::printf("files %zu  mean of medians %.3f ms  worst median %.3f ms\n", files.size(),
               total_median / files.size(), worst_median);

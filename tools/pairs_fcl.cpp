@@ -31,8 +31,8 @@ HullFaces qhullFaces(const std::vector<Vec3d>& points) {
   qhT* qh = &qh_storage;
   qh_zero(qh, quiet);
   char flags[] = "qhull Qt";
-  const int exitcode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(),
-                                    False, flags, nullptr, quiet);
+  const int exitcode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False,
+                                    flags, nullptr, quiet);
   if (exitcode == 0) {
     std::vector<int> index(points.size(), -1);
     vertexT* vertex;
@@ -97,8 +97,8 @@ FclShape makeFclShape(const ShapeSpec& s) {
       out.hull_is_3d = h.is_3d;
       if (!h.is_3d) h.vertices.assign(s.vertices.begin(), s.vertices.end());
       out.geometry = std::make_shared<fcl::Convexd>(
-          std::make_shared<const std::vector<fcl::Vector3d>>(std::move(h.vertices)),
-          h.num_faces, std::make_shared<const std::vector<int>>(std::move(h.faces)));
+          std::make_shared<const std::vector<fcl::Vector3d>>(std::move(h.vertices)), h.num_faces,
+          std::make_shared<const std::vector<int>>(std::move(h.faces)));
       break;
     }
   }

@@ -11,10 +11,10 @@
 // a pair that does not collide intersects when fcl::distance <= r.
 #pragma once
 
+#include <fcl/fcl.h>
+
 #include <memory>
 #include <vector>
-
-#include <fcl/fcl.h>
 
 #include "pairs_input.h"
 

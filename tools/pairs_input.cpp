@@ -66,7 +66,7 @@ ShapeSpec parseShape(const Json& j, const std::string& where) {
     s.kind = ShapeKind::kBox;
     s.dims = sizes(j, "size", where);
   } else if (t == "cylinder" || t == "capsule" || t == "cone") {
-    s.kind = t == "cylinder" ? ShapeKind::kCylinder
+    s.kind = t == "cylinder"  ? ShapeKind::kCylinder
              : t == "capsule" ? ShapeKind::kCapsule
                               : ShapeKind::kCone;
     s.radius = size(j, "radius", where);
@@ -110,13 +110,20 @@ ShapeSpec parseShape(const Json& j, const std::string& where) {
 
 const char* kindName(ShapeKind k) {
   switch (k) {
-    case ShapeKind::kSphere: return "sphere";
-    case ShapeKind::kBox: return "box";
-    case ShapeKind::kCylinder: return "cylinder";
-    case ShapeKind::kCapsule: return "capsule";
-    case ShapeKind::kCone: return "cone";
-    case ShapeKind::kEllipsoid: return "ellipsoid";
-    case ShapeKind::kConvex: return "convex";
+    case ShapeKind::kSphere:
+      return "sphere";
+    case ShapeKind::kBox:
+      return "box";
+    case ShapeKind::kCylinder:
+      return "cylinder";
+    case ShapeKind::kCapsule:
+      return "capsule";
+    case ShapeKind::kCone:
+      return "cone";
+    case ShapeKind::kEllipsoid:
+      return "ellipsoid";
+    case ShapeKind::kConvex:
+      return "convex";
   }
   return "unknown";
 }

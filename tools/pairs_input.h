@@ -27,13 +27,13 @@ const char* kindName(ShapeKind k);
 /// One shape exactly as given in the file (validated), plus its rotation matrix.
 struct ShapeSpec {
   ShapeKind kind = ShapeKind::kSphere;
-  double radius = 0;                  // sphere, cylinder, capsule, cone
-  double length = 0;                  // cylinder, capsule, cone (full length along z)
-  Vec3d dims = Vec3d::Zero();         // box: full edge lengths; ellipsoid: radii
-  std::vector<Vec3d> vertices;        // convex, in the shape's frame (or world without pose)
+  double radius = 0;            // sphere, cylinder, capsule, cone
+  double length = 0;            // cylinder, capsule, cone (full length along z)
+  Vec3d dims = Vec3d::Zero();   // box: full edge lengths; ellipsoid: radii
+  std::vector<Vec3d> vertices;  // convex, in the shape's frame (or world without pose)
   bool has_pose = false;
   Vec3d p_WS = Vec3d::Zero();
-  Mat3d R_WS = Mat3d::Identity();     // from the normalised quaternion
+  Mat3d R_WS = Mat3d::Identity();  // from the normalised quaternion
   /// Convex only: fl(R v + p) for each vertex when posed, the vertices as given otherwise.
   std::vector<Vec3d> worldVertices() const;
 };
@@ -41,7 +41,7 @@ struct ShapeSpec {
 struct PairSpec {
   std::string id_json;  // the id, serialised as JSON (string or number)
   ShapeSpec a, b;
-  int line = 0;         // 1-based line in the input
+  int line = 0;  // 1-based line in the input
 };
 
 class PairsInputError : public std::runtime_error {

@@ -13,14 +13,29 @@ namespace {
 void place(const ShapeSpec& s, AnyShape& shape, Eigen::Isometry3d& X_WS) {
   X_WS = Eigen::Isometry3d::Identity();
   switch (s.kind) {
-    case ShapeKind::kSphere: shape = Sphere{s.radius}; break;
-    case ShapeKind::kBox: shape = Box::fromSize(s.dims); break;
-    case ShapeKind::kCapsule: shape = Capsule::fromLength(s.radius, s.length); break;
-    case ShapeKind::kCylinder: shape = Cylinder::fromLength(s.radius, s.length); break;
-    case ShapeKind::kCone: shape = Cone::fromLength(s.radius, s.length); break;
-    case ShapeKind::kEllipsoid: shape = Ellipsoid{s.dims}; break;
-    case ShapeKind::kConvex: shape = ConvexHull(s.worldVertices()); return;  // world points
-    default: throw std::invalid_argument("unknown shape kind");
+    case ShapeKind::kSphere:
+      shape = Sphere{s.radius};
+      break;
+    case ShapeKind::kBox:
+      shape = Box::fromSize(s.dims);
+      break;
+    case ShapeKind::kCapsule:
+      shape = Capsule::fromLength(s.radius, s.length);
+      break;
+    case ShapeKind::kCylinder:
+      shape = Cylinder::fromLength(s.radius, s.length);
+      break;
+    case ShapeKind::kCone:
+      shape = Cone::fromLength(s.radius, s.length);
+      break;
+    case ShapeKind::kEllipsoid:
+      shape = Ellipsoid{s.dims};
+      break;
+    case ShapeKind::kConvex:
+      shape = ConvexHull(s.worldVertices());
+      return;  // world points
+    default:
+      throw std::invalid_argument("unknown shape kind");
   }
   X_WS.linear() = s.R_WS;
   X_WS.translation() = s.p_WS;
@@ -35,8 +50,8 @@ CorePair makeCorePair(const ShapeSpec& a, const ShapeSpec& b) {
   return p;
 }
 
-void decideAll(CoreAlgo algo, const std::vector<CorePair>& pairs, const Options& opt, double padding,
-               std::vector<Result>& out) {
+void decideAll(CoreAlgo algo, const std::vector<CorePair>& pairs, const Options& opt,
+               double padding, std::vector<Result>& out) {
   out.resize(pairs.size());
   auto run = [&](auto&& decide) {
     for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -44,12 +59,15 @@ void decideAll(CoreAlgo algo, const std::vector<CorePair>& pairs, const Options&
       out[i] = decide(p.a, p.X_WA, p.b, p.X_WB, opt, padding);
     }
   };
-  using Decide = Result (*)(const AnyShape&, const Eigen::Isometry3d&, const AnyShape&, const Eigen::Isometry3d&,
-                            const Options&, double);
+  using Decide = Result (*)(const AnyShape&, const Eigen::Isometry3d&, const AnyShape&,
+                            const Eigen::Isometry3d&, const Options&, double);
   switch (algo) {
-    case CoreAlgo::kDss: return run(static_cast<Decide>(&intersect));
-    case CoreAlgo::kGjk: return run(&intersectGjk);
-    case CoreAlgo::kHybrid: return run(&intersectHybrid);
+    case CoreAlgo::kDss:
+      return run(static_cast<Decide>(&intersect));
+    case CoreAlgo::kGjk:
+      return run(&intersectGjk);
+    case CoreAlgo::kHybrid:
+      return run(&intersectHybrid);
   }
 }
 

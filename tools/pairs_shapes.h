@@ -8,9 +8,8 @@
 // may be padded by a radius, which turns the decision into "distance <= r".
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "dss/core/any_shape.h"
 #include "dss/core/result.h"
@@ -33,8 +32,8 @@ enum class CoreAlgo { kDss, kGjk, kHybrid };
 
 /// Decides every pair (the loop is inside, so that timing measures the decisions and the
 /// per-pair dispatch only); `padding` grows shape A.
-void decideAll(CoreAlgo algo, const std::vector<CorePair>& pairs, const Options& opt, double padding,
-               std::vector<Result>& out);
+void decideAll(CoreAlgo algo, const std::vector<CorePair>& pairs, const Options& opt,
+               double padding, std::vector<Result>& out);
 
 }  // namespace pairs
 }  // namespace dss

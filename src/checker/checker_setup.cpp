@@ -42,11 +42,12 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
   s.held = heldState(*robot.model, {scene.robot_state, start}, &ignored);
   for (const auto& n : ignored)
     if (n != "virtual_joint")
-      s.warnings.push_back("joint " + n + " of the scene/request is not an active joint of the robot: ignored");
+      s.warnings.push_back("joint " + n +
+                           " of the scene/request is not an active joint of the robot: ignored");
   CollisionModelOptions options;
   options.prune_margin = prune_margin;
-  auto model = std::make_shared<CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, std::move(scene),
-                                                s.group_active, s.held, options);
+  auto model = std::make_shared<CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr,
+                                                std::move(scene), s.group_active, s.held, options);
   for (const auto& w : model->warnings) s.warnings.push_back(w);
   s.model = std::move(model);
   return s;
@@ -64,7 +65,8 @@ std::shared_ptr<const StateChecker> makeStateChecker(std::shared_ptr<const Colli
   }
   if (c.checker == "fcl-hull" || c.checker == "fcl-mesh") {
     if (c.fcl_prefilter != "aabb" && c.fcl_prefilter != "shared")
-      throw std::invalid_argument("unknown FCL prefilter '" + c.fcl_prefilter + "' (expected aabb or shared)");
+      throw std::invalid_argument("unknown FCL prefilter '" + c.fcl_prefilter +
+                                  "' (expected aabb or shared)");
     FclCheckerSettings s;
     s.geometry = c.checker == "fcl-hull" ? FclGeometry::kHull : FclGeometry::kMesh;
     s.prefilter = c.fcl_prefilter == "aabb" ? FclPrefilter::kAabb : FclPrefilter::kShared;
@@ -73,7 +75,8 @@ std::shared_ptr<const StateChecker> makeStateChecker(std::shared_ptr<const Colli
     s.obb_stage = c.obb_stage;
     return std::make_shared<const FclChecker>(std::move(model), s);
   }
-  throw std::invalid_argument("unknown checker '" + c.checker + "' (expected dss, fcl-hull or fcl-mesh)");
+  throw std::invalid_argument("unknown checker '" + c.checker +
+                              "' (expected dss, fcl-hull or fcl-mesh)");
 }
 
 }  // namespace dss

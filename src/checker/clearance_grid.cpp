@@ -7,10 +7,11 @@
 
 namespace dss {
 
-ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes, std::size_t max_voxels,
-                             double min_voxel) {
+ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
+                             std::size_t max_voxels, double min_voxel) {
   const Eigen::Vector3d extent = region.upper - region.lower;
-  if (boxes.empty() || !extent.allFinite() || !(extent.minCoeff() >= 0.0) || max_voxels == 0) return;
+  if (boxes.empty() || !extent.allFinite() || !(extent.minCoeff() >= 0.0) || max_voxels == 0)
+    return;
   double size = std::max(min_voxel, std::cbrt(extent.prod() / static_cast<double>(max_voxels)));
   int n[3];
   for (;;) {  // round the counts up; grow the voxels until the total fits

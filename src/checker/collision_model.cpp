@@ -14,8 +14,8 @@
 
 namespace dss {
 
-CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf, Scene scene,
-                               std::vector<int> group_active, std::vector<double> held,
+CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Srdf* srdf,
+                               Scene scene, std::vector<int> group_active, std::vector<double> held,
                                const CollisionModelOptions& options)
     : robot_(std::move(robot)),
       kin_(*robot_, /*all_links=*/false),
@@ -26,8 +26,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   const RobotModel& m = *robot_;
   if (held_.size() != m.numActiveJoints())
     throw std::invalid_argument("CollisionModel: held state has " + std::to_string(held_.size()) +
-                                " values, robot " + m.name + " has " + std::to_string(m.numActiveJoints()) +
-                                " active joints");
+                                " values, robot " + m.name + " has " +
+                                std::to_string(m.numActiveJoints()) + " active joints");
   if (group_active_.empty())
     for (std::size_t i = 0; i < m.numActiveJoints(); ++i) group_active_.push_back(int(i));
   in_group_.assign(m.numActiveJoints(), 0);
@@ -100,7 +100,8 @@ void CollisionModel::buildSlots() {
     }
     s.center_L = 0.5 * (lo + hi);
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
-      s.radius = std::max(s.radius, (elements_[e].center_L - s.center_L).norm() + elements_[e].radius);
+      s.radius =
+          std::max(s.radius, (elements_[e].center_L - s.center_L).norm() + elements_[e].radius);
     slots_.push_back(s);
   }
 }
@@ -131,10 +132,12 @@ void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
     if (!s.moves) continue;
     // The first joint from the root that moves with the group: its origin is fixed in the world
     // (it turns about it) or slides along its axis by at most its travel.
-    const std::vector<ChainTerm> chain = chainAbove(m, s.link, -1, s.center_L.norm() + s.radius, held_);
+    const std::vector<ChainTerm> chain =
+        chainAbove(m, s.link, -1, s.center_L.norm() + s.radius, held_);
     const ChainTerm* first = nullptr;
     for (const ChainTerm& t : chain)
-      if (moves_[m.joints[t.joint].child_link] && !moves_[m.joints[t.joint].parent_link]) first = &t;
+      if (moves_[m.joints[t.joint].child_link] && !moves_[m.joints[t.joint].parent_link])
+        first = &t;
     if (!first) continue;  // cannot happen: a moving link has a moving joint above it
     const RobotJoint& j0 = m.joints[first->joint];
     s.reach_center_W = X_WL[j0.parent_link] * j0.X_PJ.translation();
@@ -159,7 +162,8 @@ void CollisionModel::buildSelfPairs(const Srdf* srdf, const CollisionModelOption
   for (const auto& [a, b] : self_report_.pairs) {
     if (!moves_[a] && !moves_[b]) continue;  // their relative pose never changes
     if (slot_of[a] < 0 || slot_of[b] < 0) continue;
-    self_pairs_.push_back({slot_of[a], slot_of[b], -1, slots_[slot_of[a]].radius + slots_[slot_of[b]].radius});
+    self_pairs_.push_back(
+        {slot_of[a], slot_of[b], -1, slots_[slot_of[a]].radius + slots_[slot_of[b]].radius});
   }
 }
 
@@ -181,7 +185,8 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
         const double d2 = detail::sqDistPointAabb(slots_[s].reach_center_W, boxes[o]);
         if (std::isfinite(r) && d2 > r * r) {
           // Pruned: the link never comes closer than this to the obstacle.
-          pruned_gap_ = std::min(pruned_gap_, (std::sqrt(d2) - slots_[s].reach_radius) * (1.0 - 1e-9));
+          pruned_gap_ =
+              std::min(pruned_gap_, (std::sqrt(d2) - slots_[s].reach_radius) * (1.0 - 1e-9));
           continue;
         }
       }
@@ -230,7 +235,8 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
   region.lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   region.upper = -region.lower;
   for (const Slot& slot : slots_)
-    if (!slot.obstacles.empty() && std::isfinite(slot.reach_radius) && slot.reach_center_W.allFinite()) {
+    if (!slot.obstacles.empty() && std::isfinite(slot.reach_radius) &&
+        slot.reach_center_W.allFinite()) {
       const Eigen::Vector3d r = Eigen::Vector3d::Constant(slot.reach_radius);
       region.lower = region.lower.cwiseMin(slot.reach_center_W - r);
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
@@ -250,9 +256,9 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
   };
   std::vector<SelfPairTable> tables;
   for (SelfPair& pair : self_pairs_) {
-    std::optional<SelfPairTable> t =
-        buildSelfPairTable(*robot_, kin_, held_, in_group_, side(pair.a), side(pair.b), options.self_table_cells_1d,
-                           options.self_table_cells_2d, options.self_table_padding);
+    std::optional<SelfPairTable> t = buildSelfPairTable(
+        *robot_, kin_, held_, in_group_, side(pair.a), side(pair.b), options.self_table_cells_1d,
+        options.self_table_cells_2d, options.self_table_padding);
     if (!t) continue;
     pair.table = int(tables.size());
     tables.push_back(std::move(*t));
@@ -265,7 +271,8 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
 
 std::size_t CollisionModel::pairsBehindBlockBalls() const {
   std::size_t n = 0;
-  for (const PairBlock& b : pair_blocks_) n += b.anchor >= 0 ? static_cast<std::size_t>(b.end - b.begin) : 0;
+  for (const PairBlock& b : pair_blocks_)
+    n += b.anchor >= 0 ? static_cast<std::size_t>(b.end - b.begin) : 0;
   return n;
 }
 
@@ -273,9 +280,10 @@ std::string CollisionModel::summary() const {
   std::ostringstream os;
   std::size_t moving = 0;
   for (const auto& s : slots_) moving += s.moves;
-  os << "kept " << scene_.obstacles.size() << " of " << obstacles_before_ << " obstacles, " << scene_pairs_ << " of "
-     << scene_pairs_before_ << " robot-scene link pairs, " << self_pairs_.size() << " of " << self_report_.all_pairs
-     << " self link pairs (" << moving << " of " << slots_.size() << " links with geometry move)";
+  os << "kept " << scene_.obstacles.size() << " of " << obstacles_before_ << " obstacles, "
+     << scene_pairs_ << " of " << scene_pairs_before_ << " robot-scene link pairs, "
+     << self_pairs_.size() << " of " << self_report_.all_pairs << " self link pairs (" << moving
+     << " of " << slots_.size() << " links with geometry move)";
   if (self_tables_.size() > 0) {
     std::size_t cells = 0, free = 0, colliding = 0;
     for (const auto& t : self_tables_.tables())

@@ -29,16 +29,18 @@ Scratch& scratch() {
 
 }  // namespace
 
-ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker, double min_fraction)
+ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker,
+                                                 double min_fraction)
     : checker_(std::move(checker)), min_fraction_(min_fraction) {
   if (!(min_fraction_ > 0.0 && min_fraction_ <= 1.0))
-    throw std::invalid_argument("ContinuousMotionChecker: min_fraction " + std::to_string(min_fraction_) +
-                                " is not in (0, 1]");
+    throw std::invalid_argument("ContinuousMotionChecker: min_fraction " +
+                                std::to_string(min_fraction_) + " is not in (0, 1]");
   const CollisionModel& m = checker_->model();
   chains_.resize(m.slots().size());
   for (std::size_t k = 0; k < m.slots().size(); ++k) {
     const auto& s = m.slots()[k];
-    if (s.moves) chains_[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
+    if (s.moves)
+      chains_[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
   }
   // Units in the order of the state sweep: robot vs scene, then self pairs.
   for (const auto& s : m.slots()) {
@@ -50,7 +52,8 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
     const auto& sa = m.slots()[p.a];
     const auto& sb = m.slots()[p.b];
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea)
-      for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) units_.push_back({ea, eb, true});
+      for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb)
+        units_.push_back({ea, eb, true});
   }
 }
 
@@ -61,8 +64,9 @@ void ContinuousMotionChecker::paddings(const double* qa, const double* qb, doubl
   }
 }
 
-bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB,
-                                        const double* pad, std::uint64_t* tests) const {
+bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* XA,
+                                        const Eigen::Isometry3d* XB, const double* pad,
+                                        std::uint64_t* tests) const {
   const CollisionModel& m = checker_->model();
   const DssCheckerSettings& set = checker_->settings();
   const auto& el = m.elements();
@@ -76,8 +80,8 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     if (detail::sqDistPointAabb(0.5 * (a0 + a1), m.obstacleBoxes()[u.b]) > r * r) return true;
     ++*tests;
     const Obstacle& o = m.scene().obstacles[u.b];
-    return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, o.shape, o.X_WO,
-                           set.options)
+    return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p,
+                           o.shape, o.X_WO, set.options)
                 .intersect;
   }
   const auto& eb = el[u.b];
@@ -88,8 +92,9 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + ea.radius + eb.radius + p;
   if ((0.5 * (a0 + a1) - 0.5 * (b0 + b1)).squaredNorm() > r * r) return true;
   ++*tests;
-  return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p, eb.source->shape,
-                         XB0 * eb.source->X_LS, XB1 * eb.source->X_LS, set.options)
+  return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p,
+                         eb.source->shape, XB0 * eb.source->X_LS, XB1 * eb.source->X_LS,
+                         set.options)
               .intersect;
 }
 
@@ -146,7 +151,8 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     paddings(qa, qb, sc.pad.data());
     for (std::size_t w = iv.begin; w < iv.end; ++w) {
       const int u = sc.work[w];
-      if (unitClear(units_[u], sc.XA.data(), sc.XB.data(), sc.pad.data(), &tests)) continue;  // cleared for [ta, tb]
+      if (unitClear(units_[u], sc.XA.data(), sc.XB.data(), sc.pad.data(), &tests))
+        continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the
       // halves' list (near a contact it fails again at once), followed by the units not yet
       // tested here. Testing those here too would clear some for both halves with one test,

@@ -16,7 +16,8 @@ struct Scratch {
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<unsigned char> skip;
   void reserve(const CollisionModel& m) {
-    if (X_WL.size() < m.robot().links.size()) X_WL.resize(m.robot().links.size(), Eigen::Isometry3d::Identity());
+    if (X_WL.size() < m.robot().links.size())
+      X_WL.resize(m.robot().links.size(), Eigen::Isometry3d::Identity());
     if (skip.size() < m.selfTables().size()) skip.resize(m.selfTables().size());
   }
 };
@@ -44,15 +45,17 @@ StateVerdict DssChecker::check(const double* q) const {
   if (!hit) {
     // With the held joints at their values the sweep needs only the pose links.
     (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
-    hit = collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding, settings_.self_padding);
+    hit = collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding,
+                     settings_.self_padding);
   }
   if (!hit) return StateVerdict::kFree;
   c.add(c.collisions);
   return StateVerdict::kColliding;
 }
 
-bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,
-                            double scene_padding, double self_padding) const {
+bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
+                            const unsigned char* skip, double scene_padding,
+                            double self_padding) const {
   const CollisionModel& m = model();
   const auto& elements = m.elements();
   const auto& obstacles = m.scene().obstacles;
@@ -65,11 +68,12 @@ bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, cons
   };
   auto scene = [&](int e, const Eigen::Isometry3d& X_WS, int o) {
     const Obstacle& ob = obstacles[o];
-    return decide(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO, settings_.options, scene_padding));
+    return decide(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO, settings_.options,
+                            scene_padding));
   };
   auto self = [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
-    return decide(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB, settings_.options,
-                            self_padding));
+    return decide(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
+                            settings_.options, self_padding));
   };
   SweepOptions opt;
   opt.scene_padding = scene_padding;
@@ -92,15 +96,16 @@ double DssChecker::clearance(const double* q) const {
   m.kinematics().computeLinkPoses(q, s.X_WL.data());
   const bool held = m.heldMatch(q);
   auto apart = [&](double r) {
-    const double scene_padding = settings_.scene_padding + r, self_padding = settings_.self_padding + r;
+    const double scene_padding = settings_.scene_padding + r,
+                 self_padding = settings_.self_padding + r;
     if (m.selfTables().read(q, held, self_padding, s.skip.data())) return false;
     return !collidesAt(s.X_WL.data(), false, s.skip.data(), scene_padding, self_padding);
   };
   if (!apart(0.0)) return 0.0;
   const double tol = settings_.clearance_tolerance > 0 ? settings_.clearance_tolerance : 1e-3;
   // Obstacles pruned from the model are at least prunedClearance() away: cap there.
-  const double cap =
-      std::max(0.0, std::min(settings_.clearance_max, m.prunedClearance() - settings_.scene_padding));
+  const double cap = std::max(
+      0.0, std::min(settings_.clearance_max, m.prunedClearance() - settings_.scene_padding));
   // Invariant: apart(lo) proven, apart(hi) not (or hi is the cap).
   double lo = 0.0, hi = std::min(tol, cap);
   while (apart(hi)) {

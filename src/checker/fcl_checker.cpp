@@ -12,7 +12,8 @@ namespace dss {
 
 namespace {
 
-std::shared_ptr<fcl::CollisionGeometryd> bvhFrom(const mesh::TriangleMesh& m, const std::string& what) {
+std::shared_ptr<fcl::CollisionGeometryd> bvhFrom(const mesh::TriangleMesh& m,
+                                                 const std::string& what) {
   if (m.triangles.empty()) throw std::runtime_error(what + ": no triangles for an FCL mesh");
   auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
   std::vector<fcl::Triangle> tris;
@@ -41,7 +42,8 @@ fcl::AABBd worldAabb(const fcl::CollisionGeometryd& g, const Eigen::Isometry3d& 
 }
 
 bool overlap(const fcl::AABBd& a, const fcl::AABBd& b, double pad) {
-  return (a.min_.array() <= b.max_.array() + pad).all() && (b.min_.array() <= a.max_.array() + pad).all();
+  return (a.min_.array() <= b.max_.array() + pad).all() &&
+         (b.min_.array() <= a.max_.array() + pad).all();
 }
 
 }  // namespace
@@ -49,8 +51,10 @@ bool overlap(const fcl::AABBd& a, const fcl::AABBd& b, double pad) {
 std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool as_mesh,
                                                      const std::string& what) {
   std::shared_ptr<fcl::CollisionGeometryd> g;
-  if (const auto* s = std::get_if<Sphere>(&shape)) g = std::make_shared<fcl::Sphered>(s->radius);
-  else if (const auto* b = std::get_if<Box>(&shape)) g = std::make_shared<fcl::Boxd>(2.0 * b->half);
+  if (const auto* s = std::get_if<Sphere>(&shape))
+    g = std::make_shared<fcl::Sphered>(s->radius);
+  else if (const auto* b = std::get_if<Box>(&shape))
+    g = std::make_shared<fcl::Boxd>(2.0 * b->half);
   else if (const auto* c = std::get_if<Capsule>(&shape))
     g = std::make_shared<fcl::Capsuled>(c->radius, 2.0 * c->half_length);
   else if (const auto* y = std::get_if<Cylinder>(&shape))
@@ -61,8 +65,7 @@ std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool
     g = std::make_shared<fcl::Ellipsoidd>(e->radii);
   else {
     const mesh::TriangleMesh m = mesh::tessellate(shape);
-    if (m.triangles.empty())
-      throw std::runtime_error(what + ": flat hull, no facets for FCL");
+    if (m.triangles.empty()) throw std::runtime_error(what + ": flat hull, no facets for FCL");
     if (as_mesh) return bvhFrom(m, what);
     auto verts = std::make_shared<std::vector<fcl::Vector3d>>(m.vertices.begin(), m.vertices.end());
     auto faces = std::make_shared<std::vector<int>>();
@@ -76,7 +79,8 @@ std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool
   return g;
 }
 
-std::shared_ptr<fcl::CollisionGeometryd> fclMeshGeometry(const std::string& path, const Eigen::Vector3d& scale,
+std::shared_ptr<fcl::CollisionGeometryd> fclMeshGeometry(const std::string& path,
+                                                         const Eigen::Vector3d& scale,
                                                          const std::string& what) {
   return bvhFrom(mesh::loadMesh(path, scale), what);
 }
@@ -100,13 +104,15 @@ FclChecker::FclChecker(std::shared_ptr<const CollisionModel> model, const Settin
 
 std::string FclChecker::solverDescription() {
   const fcl::CollisionRequestd req;
-  return std::string("fcl 0.7 collide(): num_max_contacts=") + std::to_string(req.num_max_contacts) +
+  return std::string("fcl 0.7 collide(): num_max_contacts=") +
+         std::to_string(req.num_max_contacts) +
          ", enable_contact=" + (req.enable_contact ? "true" : "false") + ", gjk_solver_type=" +
          (req.gjk_solver_type == fcl::GST_LIBCCD ? "GST_LIBCCD" : "GST_INDEP");
 }
 
-bool FclChecker::pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A, const fcl::CollisionGeometryd* b,
-                      const Eigen::Isometry3d& X_B, double padding) const {
+bool FclChecker::pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A,
+                      const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& X_B,
+                      double padding) const {
   if (padding > 0.0) {
     fcl::DistanceRequestd req;
     fcl::DistanceResultd res;
@@ -140,7 +146,8 @@ StateVerdict FclChecker::check(const double* q) const {
     return StateVerdict::kInvalidInput;
   }
   Scratch& s = scratch();
-  if (s.X_WL.size() < m.robot().links.size()) s.X_WL.resize(m.robot().links.size(), Eigen::Isometry3d::Identity());
+  if (s.X_WL.size() < m.robot().links.size())
+    s.X_WL.resize(m.robot().links.size(), Eigen::Isometry3d::Identity());
   if (s.skip.size() < m.selfTables().size()) s.skip.resize(m.selfTables().size());
   std::uint64_t tests = 0;
   bool hit;
@@ -150,13 +157,15 @@ StateVerdict FclChecker::check(const double* q) const {
   } else {
     const bool held = m.heldMatch(q);
     const bool hulls = settings_.geometry == FclGeometry::kHull;
-    hit = m.selfTables().read(q, held, settings_.self_padding, s.skip.data(), /*colliding_cells=*/hulls);
+    hit = m.selfTables().read(q, held, settings_.self_padding, s.skip.data(),
+                              /*colliding_cells=*/hulls);
     if (!hit) {
       (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
       const auto& obstacles = m.scene().obstacles;
       auto scene = [&](int e, const Eigen::Isometry3d& X_WS, int o) {
         ++tests;
-        return pair(elements_[e].get(), X_WS, obstacles_[o].get(), obstacles[o].X_WO, settings_.scene_padding);
+        return pair(elements_[e].get(), X_WS, obstacles_[o].get(), obstacles[o].X_WO,
+                    settings_.scene_padding);
       };
       auto self = [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
         ++tests;
@@ -198,7 +207,9 @@ bool FclChecker::collidesAabb(const Eigen::Isometry3d* X_WL, std::uint64_t* test
       for (int e = slot.first_element; e < slot.first_element + slot.num_elements; ++e) {
         if (!overlap(s.boxes[e], obstacle_boxes_[o], scene_padding)) continue;
         ++*tests;
-        if (pair(elements_[e].get(), s.X_WE[e], obstacles_[o].get(), obstacles[o].X_WO, scene_padding)) return true;
+        if (pair(elements_[e].get(), s.X_WE[e], obstacles_[o].get(), obstacles[o].X_WO,
+                 scene_padding))
+          return true;
       }
     }
   }
@@ -209,7 +220,8 @@ bool FclChecker::collidesAabb(const Eigen::Isometry3d* X_WL, std::uint64_t* test
       for (int b = sb.first_element; b < sb.first_element + sb.num_elements; ++b) {
         if (!overlap(s.boxes[a], s.boxes[b], self_padding)) continue;
         ++*tests;
-        if (pair(elements_[a].get(), s.X_WE[a], elements_[b].get(), s.X_WE[b], self_padding)) return true;
+        if (pair(elements_[a].get(), s.X_WE[a], elements_[b].get(), s.X_WE[b], self_padding))
+          return true;
       }
   }
   return false;

@@ -32,7 +32,8 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
     if (const auto* y = std::get_if<Cylinder>(&shape))
       return std::min(y->radius - c.head<2>().norm(), y->half_length - std::abs(c.z()));
     if (const auto* k = std::get_if<Capsule>(&shape))
-      return k->radius - Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
+      return k->radius -
+             Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
     if (const auto* e = std::get_if<Ellipsoid>(&shape)) return e->radii.minCoeff() - c.norm();
     if (std::holds_alternative<ConvexHull>(shape)) {
       double r = std::numeric_limits<double>::infinity();
@@ -52,7 +53,8 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
     const double r = radius(c) - shrink;
     if (r > 0.05 * box_h.maxCoeff()) cand.emplace_back(c.x(), c.y(), c.z(), r);
   }
-  std::sort(cand.begin(), cand.end(), [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return a.w() > b.w(); });
+  std::sort(cand.begin(), cand.end(),
+            [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return a.w() > b.w(); });
   // Directions to check each ball against the support function: a ball inside the shape has
   // h(u) >= u.c + r for every unit u.
   std::vector<Eigen::Vector3d> dirs;
@@ -66,17 +68,18 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
     if (n == max_out) break;
     bool spread = true;
     for (int k = 0; k < n; ++k)
-      if ((out[k].head<3>() - b.head<3>()).norm() < 0.5 * std::max(out[k].w(), b.w())) spread = false;
+      if ((out[k].head<3>() - b.head<3>()).norm() < 0.5 * std::max(out[k].w(), b.w()))
+        spread = false;
     if (!spread) continue;
     bool inside = true;
     for (const auto& u : dirs) {
-      const double h = std::visit([&](const auto& s) { return s.support(u, Eigen::Vector3d::Zero()).dot(u); }, shape);
+      const double h = std::visit(
+          [&](const auto& s) { return s.support(u, Eigen::Vector3d::Zero()).dot(u); }, shape);
       if (!(h >= u.dot(b.head<3>()) + b.w())) inside = false;
     }
     if (inside) out[n++] = b;
   }
   return n;
 }
-
 
 }  // namespace dss

@@ -15,7 +15,8 @@ double valueRange(const RobotJoint& j, double held) {
 }
 }  // namespace
 
-double prismaticTravel(const RobotModel& robot, const RobotJoint& j, const std::vector<double>& held) {
+double prismaticTravel(const RobotModel& robot, const RobotJoint& j,
+                       const std::vector<double>& held) {
   if (j.type != JointType::kPrismatic) return 0.0;
   if (j.active_index >= 0) return valueRange(j, held[j.active_index]);
   if (j.mimic_active >= 0) {
@@ -27,9 +28,11 @@ double prismaticTravel(const RobotModel& robot, const RobotJoint& j, const std::
   return 0.0;
 }
 
-double originOffsetBound(const RobotModel& robot, int link, int stop, const std::vector<double>& held) {
+double originOffsetBound(const RobotModel& robot, int link, int stop,
+                         const std::vector<double>& held) {
   double d = 0.0;
-  for (int l = link; l != stop && robot.links[l].parent_joint >= 0; l = robot.links[l].parent_link) {
+  for (int l = link; l != stop && robot.links[l].parent_joint >= 0;
+       l = robot.links[l].parent_link) {
     const RobotJoint& j = robot.joints[robot.links[l].parent_joint];
     d += j.X_PJ.translation().norm() + prismaticTravel(robot, j, held);
   }
@@ -40,7 +43,8 @@ std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, d
                                   const std::vector<double>& held, double* reach_at_stop) {
   std::vector<ChainTerm> out;
   double reach = radius;
-  for (int l = link; l != stop && robot.links[l].parent_joint >= 0; l = robot.links[l].parent_link) {
+  for (int l = link; l != stop && robot.links[l].parent_joint >= 0;
+       l = robot.links[l].parent_link) {
     const RobotJoint& j = robot.joints[robot.links[l].parent_joint];
     if (j.isMoving()) {
       ChainTerm t;

@@ -24,7 +24,8 @@ std::vector<PairBlock> buildPairBlocks(const CollisionModel& model, double min_s
   // A bound on the distance from the anchor's origin to any point of slot s's sphere.
   auto reach = [&](int anchor, int s) {
     double r = 0.0;
-    chainAbove(m, slots[s].link, anchor, slots[s].center_L.norm() + slots[s].radius, model.held(), &r);
+    chainAbove(m, slots[s].link, anchor, slots[s].center_L.norm() + slots[s].radius, model.held(),
+               &r);
     return r;
   };
   std::vector<PairBlock> blocks;
@@ -44,12 +45,15 @@ std::vector<PairBlock> buildPairBlocks(const CollisionModel& model, double min_s
         double radius = 0.0;
         for (std::size_t k = i; k < j && radius >= 0.0; ++k) {
           const int b = pairs[k].b;
-          radius = isAncestorOrSelf(anchor, slots[b].link) ? std::max(radius, reach(anchor, b)) : -1.0;
+          radius =
+              isAncestorOrSelf(anchor, slots[b].link) ? std::max(radius, reach(anchor, b)) : -1.0;
         }
         if (radius >= 0.0 && radius < best) best = radius, blk.anchor = anchor;
       }
-      if (blk.anchor >= 0 && std::isfinite(best)) blk.radius = best + 1e-9 * (1.0 + best);
-      else blk.anchor = -1;
+      if (blk.anchor >= 0 && std::isfinite(best))
+        blk.radius = best + 1e-9 * (1.0 + best);
+      else
+        blk.anchor = -1;
     }
     blocks.push_back(blk);
     i = j;
@@ -77,7 +81,8 @@ std::vector<PairBlock> buildPairBlocks(const CollisionModel& model, double min_s
       if (blk.anchor < 0) continue;
       const CollisionModel::Slot& sa = slots[blk.a];
       const double r = blk.radius + sa.radius;
-      ruled_out[b] += (X[sa.pose_link] * sa.center_P - X[blk.anchor].translation()).squaredNorm() > r * r;
+      ruled_out[b] +=
+          (X[sa.pose_link] * sa.center_P - X[blk.anchor].translation()).squaredNorm() > r * r;
     }
   }
   std::vector<PairBlock> kept;

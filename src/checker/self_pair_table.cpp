@@ -18,9 +18,10 @@ std::vector<int> ancestors(const RobotModel& m, int link) {
 }  // namespace
 
 std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinematics& kin,
-                                                const std::vector<double>& held, const std::vector<char>& in_group,
-                                                const SelfPairSide& sa, const SelfPairSide& sb, int cells_1d,
-                                                int cells_2d, double padding) {
+                                                const std::vector<double>& held,
+                                                const std::vector<char>& in_group,
+                                                const SelfPairSide& sa, const SelfPairSide& sb,
+                                                int cells_1d, int cells_2d, double padding) {
   const std::vector<int> up_a = ancestors(m, sa.link), up_b = ancestors(m, sb.link);
   int common = -1;
   for (int l : up_a)
@@ -43,7 +44,10 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
   std::vector<Term> terms;
   for (const ChainTerm& t : path_b) terms.push_back({&t, t.prismatic ? 1.0 : t.reach});
   for (const ChainTerm& t : path_a)
-    terms.push_back({&t, t.prismatic ? 1.0 : originOffsetBound(m, m.joints[t.joint].child_link, common, held) + reach_b});
+    terms.push_back(
+        {&t, t.prismatic
+                 ? 1.0
+                 : originOffsetBound(m, m.joints[t.joint].child_link, common, held) + reach_b});
 
   // Variables: the group joints the path joints read (mimic joints through their leader).
   // Joints outside the group keep their held value: the table records it and answers only for
@@ -77,7 +81,8 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
   const double pi = 3.141592653589793;
   for (int k = 0; k < t.num_vars; ++k) {
     const RobotJoint& L = m.joints[m.active_joints[t.var[k]]];
-    if (L.type == JointType::kContinuous || (L.type == JointType::kRevolute && !L.limits.has_position_limits)) {
+    if (L.type == JointType::kContinuous ||
+        (L.type == JointType::kRevolute && !L.limits.has_position_limits)) {
       t.wrap[k] = true;
       t.lo[k] = -pi;
       t.hi[k] = pi;
@@ -98,7 +103,8 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
   Options exact;
   exact.mode = Mode::kExact;
   // Certify the block [i0, i1) x [j0, j1) of cells; split it until its cells are decided.
-  const double width[2] = {(t.hi[0] - t.lo[0]) / t.cells[0], t.num_vars > 1 ? (t.hi[1] - t.lo[1]) / t.cells[1] : 0.0};
+  const double width[2] = {(t.hi[0] - t.lo[0]) / t.cells[0],
+                           t.num_vars > 1 ? (t.hi[1] - t.lo[1]) / t.cells[1] : 0.0};
   auto certify = [&](auto&& self, int i0, int i1, int j0, int j1) -> void {
     double moved = 0.0;
     const int lo_idx[2] = {i0, j0}, hi_idx[2] = {i1, j1};
@@ -122,7 +128,8 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
       for (std::size_t eb = 0; eb < sb.elements.size() && free; ++eb) {
         const CollisionElement& A = *sa.elements[ea];
         const CollisionElement& B = *sb.elements[eb];
-        free = !intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad).intersect;
+        free = !intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad)
+                    .intersect;
       }
     if (free) return mark(SelfPairTable::kFree);
     // Colliding: some element pair intersects under the six translations by sqrt(3) L (and a
@@ -159,7 +166,8 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
   return t;
 }
 
-SelfPairTables::SelfPairTables(std::vector<SelfPairTable> tables, double padding, std::vector<int>* new_index)
+SelfPairTables::SelfPairTables(std::vector<SelfPairTable> tables, double padding,
+                               std::vector<int>* new_index)
     : padding_(padding) {
   // Tables on the same grid next to each other, at most four per group.
   new_index->assign(tables.size(), -1);
@@ -176,15 +184,17 @@ SelfPairTables::SelfPairTables(std::vector<SelfPairTable> tables, double padding
     g.packed.assign(tables_[g.first].cell_state.size(), 0);
     for (int k = 0; k < g.count; ++k) {
       const std::vector<unsigned char>& cells = tables_[g.first + k].cell_state;
-      for (std::size_t c = 0; c < cells.size(); ++c) g.packed[c] |= static_cast<std::uint8_t>(cells[c] << (2 * k));
+      for (std::size_t c = 0; c < cells.size(); ++c)
+        g.packed[c] |= static_cast<std::uint8_t>(cells[c] << (2 * k));
     }
     groups_.push_back(std::move(g));
   }
 }
 
-bool SelfPairTables::read(const double* q, bool held_match, double self_padding, unsigned char* skip,
-                          bool colliding_cells) const {
-  const bool use_colliding = colliding_cells && self_padding >= padding_, use_free = self_padding <= padding_;
+bool SelfPairTables::read(const double* q, bool held_match, double self_padding,
+                          unsigned char* skip, bool colliding_cells) const {
+  const bool use_colliding = colliding_cells && self_padding >= padding_,
+             use_free = self_padding <= padding_;
   for (const Group& g : groups_) {
     const int idx = tables_[g.first].index(q);
     const unsigned byte = idx < 0 ? 0u : g.packed[idx];

@@ -5,9 +5,9 @@
 
 namespace dss {
 namespace detail {
-#define DSS_EXTERN_COMPARISONS(SA)                          \
-  extern DSS_INSTANTIATE_COMPARISON(Comparison::kGjk, SA) \
-  extern DSS_INSTANTIATE_COMPARISON(Comparison::kHybrid, SA)
+#define DSS_EXTERN_COMPARISONS(SA)                                                           \
+  extern DSS_INSTANTIATE_COMPARISON(Comparison::kGjk, SA) extern DSS_INSTANTIATE_COMPARISON( \
+      Comparison::kHybrid, SA)
 DSS_EXTERN_COMPARISONS(Sphere)
 DSS_EXTERN_COMPARISONS(Box)
 DSS_EXTERN_COMPARISONS(Capsule)
@@ -20,13 +20,14 @@ namespace {
 bool isIdentity(const Eigen::Isometry3d& X) { return X.matrix() == Eigen::Matrix4d::Identity(); }
 
 template <Comparison C>
-Result decide(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b, const Eigen::Isometry3d& X_WB,
-              const Options& opt, double padding) {
+Result decide(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
+              const Eigen::Isometry3d& X_WB, const Options& opt, double padding) {
   const auto* ha = std::get_if<ConvexHull>(&a);
   const auto* hb = std::get_if<ConvexHull>(&b);
   if (ha && hb && !(padding > 0.0) && isIdentity(X_WA) && isIdentity(X_WB))
     return decideComparison<C>(*ha, *hb, opt);
-  return std::visit([&](const auto& sa) { return decideComparisonPosed<C>(sa, X_WA, b, X_WB, opt, padding); }, a);
+  return std::visit(
+      [&](const auto& sa) { return decideComparisonPosed<C>(sa, X_WA, b, X_WB, opt, padding); }, a);
 }
 }  // namespace
 }  // namespace detail

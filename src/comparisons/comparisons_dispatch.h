@@ -34,8 +34,9 @@ Result decideComparisonPosed(const SA& sa, const Eigen::Isometry3d& X_WA, const 
       b);
 }
 
-#define DSS_INSTANTIATE_COMPARISON(C, SA)                                                                   \
-  template Result decideComparisonPosed<C, SA>(const SA&, const Eigen::Isometry3d&, const AnyShape&,       \
-                                               const Eigen::Isometry3d&, const Options&, double);
+#define DSS_INSTANTIATE_COMPARISON(C, SA)                                                 \
+  template Result decideComparisonPosed<C, SA>(const SA&, const Eigen::Isometry3d&,       \
+                                               const AnyShape&, const Eigen::Isometry3d&, \
+                                               const Options&, double);
 
 }  // namespace dss::detail

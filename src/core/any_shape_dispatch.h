@@ -30,8 +30,8 @@ SweptHull<Ref<S>> sweptRef(const S& s, const Eigen::Isometry3d& X0, const Eigen:
 }
 
 template <class SA>
-Result decidePosed(const SA& sa, const Eigen::Isometry3d& X_WA, const AnyShape& b, const Eigen::Isometry3d& X_WB,
-                   const Options& opt, double padding) {
+Result decidePosed(const SA& sa, const Eigen::Isometry3d& X_WA, const AnyShape& b,
+                   const Eigen::Isometry3d& X_WB, const Options& opt, double padding) {
   return std::visit(
       [&](const auto& sb) {
         const auto pa = posedRef(sa, X_WA);
@@ -43,9 +43,9 @@ Result decidePosed(const SA& sa, const Eigen::Isometry3d& X_WA, const AnyShape& 
 }
 
 template <class SA>
-Result decideSwept(const SA& sa, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1, double padding,
-                   const AnyShape& b, const Eigen::Isometry3d& X_WB0, const Eigen::Isometry3d* X_WB1,
-                   const Options& opt) {
+Result decideSwept(const SA& sa, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1,
+                   double padding, const AnyShape& b, const Eigen::Isometry3d& X_WB0,
+                   const Eigen::Isometry3d* X_WB1, const Options& opt) {
   return std::visit(
       [&](const auto& sb) {
         const auto a = padded(sweptRef(sa, X_WA0, X_WA1), padding);
@@ -56,11 +56,11 @@ Result decideSwept(const SA& sa, const Eigen::Isometry3d& X_WA0, const Eigen::Is
 }
 
 // PREFIX: nothing to instantiate, `extern` to declare an instantiation made elsewhere.
-#define DSS_ANY_SHAPE_INSTANCES(PREFIX, SA)                                                               \
-  PREFIX template Result decidePosed<SA>(const SA&, const Eigen::Isometry3d&, const AnyShape&,            \
-                                         const Eigen::Isometry3d&, const Options&, double);              \
-  PREFIX template Result decideSwept<SA>(const SA&, const Eigen::Isometry3d&, const Eigen::Isometry3d&,   \
-                                         double, const AnyShape&, const Eigen::Isometry3d&,               \
-                                         const Eigen::Isometry3d*, const Options&);
+#define DSS_ANY_SHAPE_INSTANCES(PREFIX, SA)                                                    \
+  PREFIX template Result decidePosed<SA>(const SA&, const Eigen::Isometry3d&, const AnyShape&, \
+                                         const Eigen::Isometry3d&, const Options&, double);    \
+  PREFIX template Result decideSwept<SA>(                                                      \
+      const SA&, const Eigen::Isometry3d&, const Eigen::Isometry3d&, double, const AnyShape&,  \
+      const Eigen::Isometry3d&, const Eigen::Isometry3d*, const Options&);
 
 }  // namespace dss::detail

@@ -27,20 +27,29 @@ Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShap
   const auto* hb = std::get_if<ConvexHull>(&b);
   if (ha && hb && !(padding > 0.0) && detail::isIdentity(X_WA) && detail::isIdentity(X_WB))
     return intersect(*ha, *hb, opt);  // world vertices: exact in Mode::kExact
-  return std::visit([&](const auto& sa) { return detail::decidePosed(sa, X_WA, b, X_WB, opt, padding); }, a);
+  return std::visit(
+      [&](const auto& sa) { return detail::decidePosed(sa, X_WA, b, X_WB, opt, padding); }, a);
 }
 
-Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1,
-                      double padding, const AnyShape& b, const Eigen::Isometry3d& X_WB, const Options& opt) {
+Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0,
+                      const Eigen::Isometry3d& X_WA1, double padding, const AnyShape& b,
+                      const Eigen::Isometry3d& X_WB, const Options& opt) {
   return std::visit(
-      [&](const auto& sa) { return detail::decideSwept(sa, X_WA0, X_WA1, padding, b, X_WB, nullptr, opt); }, a);
+      [&](const auto& sa) {
+        return detail::decideSwept(sa, X_WA0, X_WA1, padding, b, X_WB, nullptr, opt);
+      },
+      a);
 }
 
-Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1,
-                      double padding, const AnyShape& b, const Eigen::Isometry3d& X_WB0,
-                      const Eigen::Isometry3d& X_WB1, const Options& opt) {
+Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0,
+                      const Eigen::Isometry3d& X_WA1, double padding, const AnyShape& b,
+                      const Eigen::Isometry3d& X_WB0, const Eigen::Isometry3d& X_WB1,
+                      const Options& opt) {
   return std::visit(
-      [&](const auto& sa) { return detail::decideSwept(sa, X_WA0, X_WA1, padding, b, X_WB0, &X_WB1, opt); }, a);
+      [&](const auto& sa) {
+        return detail::decideSwept(sa, X_WA0, X_WA1, padding, b, X_WB0, &X_WB1, opt);
+      },
+      a);
 }
 
 }  // namespace dss

@@ -169,8 +169,8 @@ int det3Sign(const double hi[3][3], const double lo[3][3]) {
   return sign(total);
 }
 
-int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl,
-               double byh, double byl) {
+int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl, double byh,
+               double byl) {
   Expansion p, q, r;
   mul(two(axh, axl), two(byh, byl), p);
   mul(two(ayh, ayl), two(bxh, bxl), q);

@@ -2,18 +2,18 @@
 // primitives. See dss/mesh/mesh.h for the contracts.
 #include "dss/mesh/mesh.h"
 
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <stdexcept>
-
-#include <assimp/Importer.hpp>
-#include <assimp/config.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -39,7 +39,8 @@ void appendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& X_p
                                base + int(face.mIndices[2])});
     }
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) appendNode(scene, node->mChildren[c], X, scale, out);
+  for (unsigned c = 0; c < node->mNumChildren; ++c)
+    appendNode(scene, node->mChildren[c], X, scale, out);
 }
 
 std::vector<Eigen::Vector3d> distinctPoints(std::vector<Eigen::Vector3d> pts) {
@@ -188,8 +189,10 @@ void stitch(TriangleMesh& m, int a, int b, int n) {
 void fan(TriangleMesh& m, int pole, int ring, int n, bool up) {
   for (int i = 0; i < n; ++i) {
     const int j = (i + 1) % n;
-    if (up) m.triangles.push_back({pole, ring + i, ring + j});
-    else m.triangles.push_back({pole, ring + j, ring + i});
+    if (up)
+      m.triangles.push_back({pole, ring + i, ring + j});
+    else
+      m.triangles.push_back({pole, ring + j, ring + i});
   }
 }
 
@@ -257,13 +260,16 @@ TriangleMesh tessellate(const dss::AnyShape& shape, int resolution) {
     for (auto& v : m.vertices) v = v.cwiseProduct(e->radii);
     return m;
   }
-  if (const auto* c = std::get_if<dss::Capsule>(&shape)) return roundSurface(c->radius, c->half_length, n);
-  if (const auto* c = std::get_if<dss::Cylinder>(&shape)) return prism(c->radius, c->radius, c->half_length, n);
+  if (const auto* c = std::get_if<dss::Capsule>(&shape))
+    return roundSurface(c->radius, c->half_length, n);
+  if (const auto* c = std::get_if<dss::Cylinder>(&shape))
+    return prism(c->radius, c->radius, c->half_length, n);
   if (const auto* c = std::get_if<dss::Cone>(&shape)) return prism(c->radius, 0, c->half_length, n);
   if (const auto* b = std::get_if<dss::Box>(&shape)) {
     TriangleMesh m;
     for (int i = 0; i < 8; ++i)
-      m.vertices.emplace_back((i & 1) ? b->half.x() : -b->half.x(), (i & 2) ? b->half.y() : -b->half.y(),
+      m.vertices.emplace_back((i & 1) ? b->half.x() : -b->half.x(),
+                              (i & 2) ? b->half.y() : -b->half.y(),
                               (i & 4) ? b->half.z() : -b->half.z());
     // faces as quads (outward), two triangles each
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},

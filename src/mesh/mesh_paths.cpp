@@ -42,7 +42,8 @@ std::optional<fs::path> findPackageDir(const fs::path& dir, const std::string& p
 }  // namespace
 
 std::optional<std::string> resolveMeshUri(const std::string& uri, const std::string& urdf_dir,
-                                          const MeshPathOptions& options, std::vector<std::string>* tried) {
+                                          const MeshPathOptions& options,
+                                          std::vector<std::string>* tried) {
   auto attempt = [&](const fs::path& p) -> std::optional<std::string> {
     if (tried) tried->push_back(p.string());
     if (isFile(p)) return p.lexically_normal().string();

@@ -1,25 +1,27 @@
 // ContinuousMotionValidator: OMPL states to joint values, then the continuous motion check.
 #include "dss/planning/continuous_motion_validator.h"
 
+#include <ompl/base/SpaceInformation.h>
+
 #include <cmath>
 #include <vector>
 
-#include <ompl/base/SpaceInformation.h>
-
 namespace dss {
 
-ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInformationPtr& si,
-                                                     std::shared_ptr<const ContinuousMotionChecker> motion,
-                                                     std::shared_ptr<const GroupStateMap> map)
+ContinuousMotionValidator::ContinuousMotionValidator(
+    const ompl::base::SpaceInformationPtr& si,
+    std::shared_ptr<const ContinuousMotionChecker> motion, std::shared_ptr<const GroupStateMap> map)
     : ompl::base::MotionValidator(si), motion_(std::move(motion)), map_(std::move(map)) {}
 
-bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
+bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1,
+                                            const ompl::base::State* s2) const {
   std::pair<ompl::base::State*, double> lv{nullptr, 0.0};
   return checkMotion(s1, s2, lv);
 }
 
-bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
-                                            std::pair<ompl::base::State*, double>& lastValid) const {
+bool ContinuousMotionValidator::checkMotion(
+    const ompl::base::State* s1, const ompl::base::State* s2,
+    std::pair<ompl::base::State*, double>& lastValid) const {
   const RobotModel& robot = motion_->checker().model().robot();
   const std::size_t n = robot.numActiveJoints();
   thread_local std::vector<double> q0, q1;

@@ -1,13 +1,13 @@
 // GroupStateMap: OMPL space of a planning group and the state <-> joint value map.
 #include "dss/planning/group_state_space.h"
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+
+#include <boost/math/constants/constants.hpp>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-
-#include <boost/math/constants/constants.hpp>
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/base/spaces/SO2StateSpace.h>
 
 namespace ob = ompl::base;
 
@@ -18,7 +18,8 @@ GroupStateMap::GroupStateMap(std::shared_ptr<const RobotModel> robot, std::vecto
     : robot_(std::move(robot)), group_(std::move(group_active)), held_(std::move(held)) {
   const RobotModel& m = *robot_;
   if (held_.size() != m.numActiveJoints())
-    throw std::invalid_argument("GroupStateMap: held state size differs from the robot's active joints");
+    throw std::invalid_argument(
+        "GroupStateMap: held state size differs from the robot's active joints");
   if (group_.empty())
     for (std::size_t i = 0; i < m.numActiveJoints(); ++i) group_.push_back(int(i));
   std::vector<int> bounded;
@@ -33,7 +34,8 @@ GroupStateMap::GroupStateMap(std::shared_ptr<const RobotModel> robot, std::vecto
       hi_.push_back(M_PI);
       ++num_continuous;
     } else {
-      if (!(j.limits.lower <= j.limits.upper) || !std::isfinite(j.limits.lower) || !std::isfinite(j.limits.upper))
+      if (!(j.limits.lower <= j.limits.upper) || !std::isfinite(j.limits.lower) ||
+          !std::isfinite(j.limits.upper))
         throw std::runtime_error(m.source + ": joint " + j.name + " has invalid limits");
       lo_.push_back(j.limits.lower);
       hi_.push_back(j.limits.upper);
@@ -134,8 +136,9 @@ void GroupStateMap::toGroupValues(const ob::State* s, double* g) const {
   }
   const auto* c = s->as<ob::CompoundStateSpace::StateType>();
   for (std::size_t i = 0; i < group_.size(); ++i)
-    g[i] = continuous_[i] ? (*c)[component_[i]]->as<ob::SO2StateSpace::StateType>()->value
-                          : (*c)[component_[i]]->as<ob::RealVectorStateSpace::StateType>()->values[index_[i]];
+    g[i] = continuous_[i]
+               ? (*c)[component_[i]]->as<ob::SO2StateSpace::StateType>()->value
+               : (*c)[component_[i]]->as<ob::RealVectorStateSpace::StateType>()->values[index_[i]];
 }
 
 void GroupStateMap::fromGroupValues(const double* g, ob::State* s) const {

@@ -19,12 +19,13 @@ Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
   return p;
 }
 
-std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& p, const CheckerConfig& config) {
+std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& p,
+                                                     const CheckerConfig& config) {
   return std::make_shared<ValidityChecker>(p.si, makeStateChecker(p.model, config), p.map);
 }
 
-std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(const Problem& p, const ValidityChecker& checker,
-                                                                         double min_fraction) {
+std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(
+    const Problem& p, const ValidityChecker& checker, double min_fraction) {
   auto dss = std::dynamic_pointer_cast<const DssChecker>(checker.checkerPtr());
   if (!dss)
     throw std::invalid_argument("the continuous motion validator needs the dss checker, not " +

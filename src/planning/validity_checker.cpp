@@ -13,14 +13,16 @@ double* jointScratch(std::size_t n) {
 }
 }  // namespace
 
-ValidityChecker::ValidityChecker(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const StateChecker> checker,
+ValidityChecker::ValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                 std::shared_ptr<const StateChecker> checker,
                                  std::shared_ptr<const GroupStateMap> map)
     : ompl::base::StateValidityChecker(si),
       checker_(std::move(checker)),
       dss_(dynamic_cast<const DssChecker*>(checker_.get())),
       map_(std::move(map)) {
-  specs_.clearanceComputationType = dss_ ? ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE
-                                         : ompl::base::StateValidityCheckerSpecs::NONE;
+  specs_.clearanceComputationType = dss_
+                                        ? ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE
+                                        : ompl::base::StateValidityCheckerSpecs::NONE;
   specs_.hasValidDirectionComputation = false;
 }
 

@@ -24,7 +24,8 @@ std::vector<LinkPair> adjacentLinkPairs(const RobotModel& model) {
   // Tree edges between links with geometry.
   for (int l = 0; l < n; ++l) {
     const int p = model.links[l].parent_link;
-    if (p >= 0 && model.links[l].hasGeometry() && model.links[p].hasGeometry()) adj.insert(ordered(p, l));
+    if (p >= 0 && model.links[l].hasGeometry() && model.links[p].hasGeometry())
+      adj.insert(ordered(p, l));
   }
   // Components of geometry-less links joined by tree edges: all geometry links touching one
   // component are pairwise adjacent.
@@ -42,7 +43,8 @@ std::vector<LinkPair> adjacentLinkPairs(const RobotModel& model) {
       if (model.links[k].parent_link >= 0) nb.push_back(model.links[k].parent_link);
       for (int j : model.links[k].child_joints) nb.push_back(model.joints[j].child_link);
       for (int m : nb) {
-        if (model.links[m].hasGeometry()) touching.insert(m);
+        if (model.links[m].hasGeometry())
+          touching.insert(m);
         else if (comp[m] < 0) {
           comp[m] = ncomp;
           stack.push_back(m);
@@ -65,9 +67,9 @@ std::string SelfCollisionPairs::summary() const {
   return s.str();
 }
 
-SelfCollisionPairs selfCollisionPairs(const RobotModel& model, const Srdf* srdf,
-                                      const std::vector<std::pair<std::string, std::string>>& allowed,
-                                      bool exclude_rigid) {
+SelfCollisionPairs selfCollisionPairs(
+    const RobotModel& model, const Srdf* srdf,
+    const std::vector<std::pair<std::string, std::string>>& allowed, bool exclude_rigid) {
   SelfCollisionPairs out;
   std::vector<int> geo;
   for (int l = 0; l < static_cast<int>(model.links.size()); ++l)
@@ -80,26 +82,32 @@ SelfCollisionPairs selfCollisionPairs(const RobotModel& model, const Srdf* srdf,
     for (const auto& p : srdf->disabled_collisions) {
       const int a = model.linkIndex(p.link1), b = model.linkIndex(p.link2);
       if (a < 0 || b < 0)
-        throw std::runtime_error(srdf->source + ": disable_collisions names link '" + (a < 0 ? p.link1 : p.link2) +
-                                 "' that robot '" + model.name + "' lacks");
+        throw std::runtime_error(srdf->source + ": disable_collisions names link '" +
+                                 (a < 0 ? p.link1 : p.link2) + "' that robot '" + model.name +
+                                 "' lacks");
       disabled.insert(ordered(a, b));
     }
   for (const auto& [n1, n2] : allowed) {
     const int a = model.linkIndex(n1), b = model.linkIndex(n2);
     if (a < 0 || b < 0)
-      throw std::runtime_error("allowed collision list names link '" + (a < 0 ? n1 : n2) + "' that robot '" +
-                               model.name + "' lacks");
+      throw std::runtime_error("allowed collision list names link '" + (a < 0 ? n1 : n2) +
+                               "' that robot '" + model.name + "' lacks");
     extra.insert(ordered(a, b));
   }
   for (std::size_t i = 0; i < geo.size(); ++i)
     for (std::size_t k = i + 1; k < geo.size(); ++k) {
       const LinkPair p{geo[i], geo[k]};
       ++out.all_pairs;
-      if (adj.count(p)) ++out.adjacent;
-      else if (exclude_rigid && model.rigidAncestor(p.first) == model.rigidAncestor(p.second)) ++out.rigid;
-      else if (disabled.count(p)) ++out.disabled;
-      else if (extra.count(p)) ++out.allowed;
-      else out.pairs.push_back(p);
+      if (adj.count(p))
+        ++out.adjacent;
+      else if (exclude_rigid && model.rigidAncestor(p.first) == model.rigidAncestor(p.second))
+        ++out.rigid;
+      else if (disabled.count(p))
+        ++out.disabled;
+      else if (extra.count(p))
+        ++out.allowed;
+      else
+        out.pairs.push_back(p);
     }
   return out;
 }
@@ -123,12 +131,13 @@ bool linksIntersect(const RobotModel& model, const Eigen::Isometry3d* X_WL, int 
 std::string DisabledPairsResult::toSrdf() const {
   std::ostringstream s;
   for (const auto& p : pairs)
-    s << "  <disable_collisions link1=\"" << p.link1 << "\" link2=\"" << p.link2 << "\" reason=\"" << p.reason
-      << "\"/>\n";
+    s << "  <disable_collisions link1=\"" << p.link1 << "\" link2=\"" << p.link2 << "\" reason=\""
+      << p.reason << "\"/>\n";
   return s.str();
 }
 
-DisabledPairsResult computeDisabledPairs(const RobotModel& model, const DisabledPairsOptions& options) {
+DisabledPairsResult computeDisabledPairs(const RobotModel& model,
+                                         const DisabledPairsOptions& options) {
   DisabledPairsResult out;
   out.samples = options.samples;
   const Kinematics kin(model);
@@ -161,7 +170,8 @@ DisabledPairsResult computeDisabledPairs(const RobotModel& model, const Disabled
   for (int s = 0; s < options.samples; ++s) {
     for (std::size_t i = 0; i < q.size(); ++i) {
       const JointLimits& l = model.joints[model.active_joints[i]].limits;
-      const double lo = l.has_position_limits ? l.lower : -M_PI, hi = l.has_position_limits ? l.upper : M_PI;
+      const double lo = l.has_position_limits ? l.lower : -M_PI,
+                   hi = l.has_position_limits ? l.upper : M_PI;
       q[i] = lo + (hi - lo) * unit(rng);
     }
     kin.computeLinkPoses(q.data(), X.data());
@@ -170,8 +180,10 @@ DisabledPairsResult computeDisabledPairs(const RobotModel& model, const Disabled
   }
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const auto& p = candidates[c];
-    if (hits[c] == 0) out.pairs.push_back({name(p.first), name(p.second), "Never"});
-    else if (hits[c] == options.samples) out.pairs.push_back({name(p.first), name(p.second), "Always"});
+    if (hits[c] == 0)
+      out.pairs.push_back({name(p.first), name(p.second), "Never"});
+    else if (hits[c] == options.samples)
+      out.pairs.push_back({name(p.first), name(p.second), "Always"});
   }
   return out;
 }

@@ -7,21 +7,26 @@
 
 namespace dss {
 
-std::vector<double> assembleState(const RobotModel& model, const std::vector<std::pair<std::string, double>>& named,
+std::vector<double> assembleState(const RobotModel& model,
+                                  const std::vector<std::pair<std::string, double>>& named,
                                   const std::string& source, std::vector<std::string>* notes,
                                   std::vector<double> q) {
   if (q.empty()) q = model.defaultState();
   if (q.size() != model.numActiveJoints())
-    throw std::runtime_error(source + ": base state has " + std::to_string(q.size()) + " values, robot '" +
-                             model.name + "' has " + std::to_string(model.numActiveJoints()) + " active joints");
+    throw std::runtime_error(source + ": base state has " + std::to_string(q.size()) +
+                             " values, robot '" + model.name + "' has " +
+                             std::to_string(model.numActiveJoints()) + " active joints");
   auto note = [&](const std::string& s) {
     if (notes) notes->push_back(source + ": " + s);
   };
   std::vector<std::pair<int, double>> mimics;
   for (const auto& [name, value] : named) {
     const int ji = model.jointIndex(name);
-    if (ji < 0) throw std::runtime_error(source + ": joint '" + name + "' is not a joint of robot '" + model.name + "'");
-    if (!std::isfinite(value)) throw std::runtime_error(source + ": joint '" + name + "' has a non-finite value");
+    if (ji < 0)
+      throw std::runtime_error(source + ": joint '" + name + "' is not a joint of robot '" +
+                               model.name + "'");
+    if (!std::isfinite(value))
+      throw std::runtime_error(source + ": joint '" + name + "' has a non-finite value");
     const RobotJoint& j = model.joints[ji];
     if (!j.isMoving()) {
       note("joint '" + name + "' is fixed in the robot; its value is ignored");
@@ -33,8 +38,8 @@ std::vector<double> assembleState(const RobotModel& model, const std::vector<std
     }
     if (j.limits.has_position_limits && (value < j.limits.lower || value > j.limits.upper)) {
       std::ostringstream s;
-      s << "joint '" << name << "' value " << value << " is outside its limits [" << j.limits.lower << ", "
-        << j.limits.upper << "]; kept";
+      s << "joint '" << name << "' value " << value << " is outside its limits [" << j.limits.lower
+        << ", " << j.limits.upper << "]; kept";
       note(s.str());
     }
     q[j.active_index] = value;
@@ -44,8 +49,8 @@ std::vector<double> assembleState(const RobotModel& model, const std::vector<std
     const double follows = j.mimic_multiplier * q[j.mimic_active] + j.mimic_offset;
     if (std::abs(follows - value) > 1e-9) {
       std::ostringstream s;
-      s << "mimic joint '" << j.name << "' given " << value << " but follows its leader at " << follows
-        << "; the given value is ignored";
+      s << "mimic joint '" << j.name << "' given " << value << " but follows its leader at "
+        << follows << "; the given value is ignored";
       note(s.str());
     }
   }

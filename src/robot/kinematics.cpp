@@ -30,8 +30,8 @@ inline void storePair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
 // inside the kinematics loop they took about half of its time. Calling libm's sincos costs
 // about as much as the rest of a kinematics step. Reads and writes n rounded up to even.
 inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n) {
-  constexpr double kPio2Hi = 0x1.921fb544p+0;  // M_PI_2 truncated to 33 significant bits
-  constexpr double kPio2Mid = 0x1.0b46p-34;     // M_PI_2 - kPio2Hi, exact
+  constexpr double kPio2Hi = 0x1.921fb544p+0;        // M_PI_2 truncated to 33 significant bits
+  constexpr double kPio2Mid = 0x1.0b46p-34;          // M_PI_2 - kPio2Hi, exact
   constexpr double kPio2Lo = 6.123233995736766e-17;  // pi/2 - M_PI_2
   static_assert(kPio2Hi + kPio2Mid == M_PI_2, "split of pi/2");
   // Round to nearest by the 1.5 * 2^52 trick (exact for |t| < 2^51, default rounding mode):
@@ -47,10 +47,22 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
     const Pair r = ((xi - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
     const Pair r2 = r * r;
     // 1/n! for the Taylor series
-    const Pair s = r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
-                   r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0)))))));
-    const Pair c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
-                   r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+    const Pair s =
+        r + r * r2 *
+                (-1.0 / 6 +
+                 r2 * (1.0 / 120 +
+                       r2 * (-1.0 / 5040 +
+                             r2 * (1.0 / 362880 + r2 * (-1.0 / 39916800 +
+                                                        r2 * (1.0 / 6227020800.0 +
+                                                              r2 * (-1.0 / 1307674368000.0)))))));
+    const Pair c =
+        1.0 + r2 * (-0.5 + r2 * (1.0 / 24 +
+                                 r2 * (-1.0 / 720 +
+                                       r2 * (1.0 / 40320 +
+                                             r2 * (-1.0 / 3628800 +
+                                                   r2 * (1.0 / 479001600.0 +
+                                                         r2 * (-1.0 / 87178291200.0 +
+                                                               r2 * (1.0 / 20922789888000.0))))))));
     // Quadrant q = k mod 4: sin = (s, c, -s, -c)[q], cos = (c, -s, -c, s)[q].
     const PairBits odd = bits & 1, half = (bits >> 1) & 1;
     const PairBits swap = 0 - odd;  // all ones for odd q
@@ -117,7 +129,8 @@ void sinCosForKinematics(double x, double* s, double* c) {
 namespace {
 std::vector<char> linksWithGeometry(const RobotModel& model, bool all_links) {
   std::vector<char> wanted(model.links.size(), all_links ? 1 : 0);
-  for (std::size_t l = 0; l < model.links.size(); ++l) wanted[l] |= model.links[l].hasGeometry() ? 1 : 0;
+  for (std::size_t l = 0; l < model.links.size(); ++l)
+    wanted[l] |= model.links[l].hasGeometry() ? 1 : 0;
   return wanted;
 }
 }  // namespace
@@ -126,24 +139,29 @@ Kinematics::Kinematics(const RobotModel& model, bool all_links)
     : Kinematics(model, linksWithGeometry(model, all_links)) {}
 
 Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
-    : root_(model.root_link), num_links_(model.links.size()), num_active_(model.active_joints.size()) {
+    : root_(model.root_link),
+      num_links_(model.links.size()),
+      num_active_(model.active_joints.size()) {
   const std::size_t n = model.links.size();
   if (wanted.size() != n)
-    throw std::invalid_argument("Kinematics: " + std::to_string(wanted.size()) + " link flags for robot " +
-                                model.name + " with " + std::to_string(n) + " links");
+    throw std::invalid_argument("Kinematics: " + std::to_string(wanted.size()) +
+                                " link flags for robot " + model.name + " with " +
+                                std::to_string(n) + " links");
   for (const auto& j : model.joints)
     joints_.push_back({j.active_index, j.mimic_active, j.mimic_multiplier, j.mimic_offset});
   // needed[l]: l is wanted or leads to a link that is.
   std::vector<char> needed(n, 0);
   for (std::size_t l = 0; l < n; ++l)
     if (wanted[l])
-      for (int k = static_cast<int>(l); k >= 0 && !needed[k]; k = model.links[k].parent_link) needed[k] = 1;
+      for (int k = static_cast<int>(l); k >= 0 && !needed[k]; k = model.links[k].parent_link)
+        needed[k] = 1;
   // computed[l]: the pose is written. A needed link is computed when it is wanted, is the
   // root, or its parent joint moves (fixed links on the way are folded away).
   std::vector<char> computed(n, 0);
   for (std::size_t l = 0; l < n; ++l) {
     const RobotLink& link = model.links[l];
-    computed[l] = needed[l] && (wanted[l] || link.parent_joint < 0 || model.joints[link.parent_joint].isMoving());
+    computed[l] = needed[l] && (wanted[l] || link.parent_joint < 0 ||
+                                model.joints[link.parent_joint].isMoving());
   }
   computed[root_] = 1;
   updated_.push_back(root_);
@@ -179,7 +197,8 @@ Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
       for (int k = 0; k < 3; ++k) {
         const double a = joint.axis[k];
         if (std::abs(a) == 1.0) {
-          s.motion = static_cast<Motion>(static_cast<int>(rot ? Motion::kRotX : Motion::kTransX) + k);
+          s.motion =
+              static_cast<Motion>(static_cast<int>(rot ? Motion::kRotX : Motion::kTransX) + k);
           s.multiplier *= a;
           s.offset *= a;
         }
@@ -251,9 +270,11 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
       if (s.identity_R) {
         c[h] = a[h], c[2 + h] = a[2 + h], c[4 + h] = a[4 + h];
       } else if (s.perm) {
-        for (int j = 0; j < 3; ++j) c[2 * j + h] = loadPair(A_ref + 4 * s.col[j] + 2 * h) * s.sign[j];
+        for (int j = 0; j < 3; ++j)
+          c[2 * j + h] = loadPair(A_ref + 4 * s.col[j] + 2 * h) * s.sign[j];
       } else {
-        for (int j = 0; j < 3; ++j) c[2 * j + h] = a[h] * s.m[j][0] + a[2 + h] * s.m[j][1] + a[4 + h] * s.m[j][2];
+        for (int j = 0; j < 3; ++j)
+          c[2 * j + h] = a[h] * s.m[j][0] + a[2 + h] * s.m[j][1] + a[4 + h] * s.m[j][2];
       }
       c[6 + h] = ((a[6 + h] + a[h] * s.m[3][0]) + a[2 + h] * s.m[3][1]) + a[4 + h] * s.m[3][2];
     }
@@ -268,24 +289,40 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
     // Translation along column k: p += d c_k.
     auto translate = [&c](int k, double d) { c[6] += d * c[2 * k], c[7] += d * c[2 * k + 1]; };
     switch (s.motion) {
-      case Motion::kNone: break;
-      case Motion::kRotX: rotate(1, 2, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
-      case Motion::kRotY: rotate(2, 0, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
-      case Motion::kRotZ: rotate(0, 1, sn[s.trig - block_begin], cs[s.trig - block_begin]); break;
+      case Motion::kNone:
+        break;
+      case Motion::kRotX:
+        rotate(1, 2, sn[s.trig - block_begin], cs[s.trig - block_begin]);
+        break;
+      case Motion::kRotY:
+        rotate(2, 0, sn[s.trig - block_begin], cs[s.trig - block_begin]);
+        break;
+      case Motion::kRotZ:
+        rotate(0, 1, sn[s.trig - block_begin], cs[s.trig - block_begin]);
+        break;
       case Motion::kRotAxis: {
-        const Eigen::Matrix3d M = Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix();
+        const Eigen::Matrix3d M =
+            Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix();
         Pair x[6];
         std::copy(c, c + 6, x);
         for (int h = 0; h < 2; ++h)
-          for (int j = 0; j < 3; ++j) c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+          for (int j = 0; j < 3; ++j)
+            c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
         break;
       }
-      case Motion::kTransX: translate(0, s.multiplier * q[s.q_index] + s.offset); break;
-      case Motion::kTransY: translate(1, s.multiplier * q[s.q_index] + s.offset); break;
-      case Motion::kTransZ: translate(2, s.multiplier * q[s.q_index] + s.offset); break;
+      case Motion::kTransX:
+        translate(0, s.multiplier * q[s.q_index] + s.offset);
+        break;
+      case Motion::kTransY:
+        translate(1, s.multiplier * q[s.q_index] + s.offset);
+        break;
+      case Motion::kTransZ:
+        translate(2, s.multiplier * q[s.q_index] + s.offset);
+        break;
       case Motion::kTransAxis: {
         const double d = s.multiplier * q[s.q_index] + s.offset;
-        for (int h = 0; h < 2; ++h) c[6 + h] += d * (c[h] * s.axis.x() + c[2 + h] * s.axis.y() + c[4 + h] * s.axis.z());
+        for (int h = 0; h < 2; ++h)
+          c[6 + h] += d * (c[h] * s.axis.x() + c[2 + h] * s.axis.y() + c[4 + h] * s.axis.z());
         break;
       }
     }

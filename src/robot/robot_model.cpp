@@ -7,10 +7,14 @@ namespace dss {
 
 const char* toString(JointType t) {
   switch (t) {
-    case JointType::kFixed: return "fixed";
-    case JointType::kRevolute: return "revolute";
-    case JointType::kContinuous: return "continuous";
-    case JointType::kPrismatic: return "prismatic";
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kRevolute:
+      return "revolute";
+    case JointType::kContinuous:
+      return "continuous";
+    case JointType::kPrismatic:
+      return "prismatic";
   }
   return "unknown";
 }
@@ -19,7 +23,8 @@ void RobotModel::rebuildIndex() {
   link_index_.clear();
   joint_index_.clear();
   for (std::size_t i = 0; i < links.size(); ++i) link_index_[links[i].name] = static_cast<int>(i);
-  for (std::size_t i = 0; i < joints.size(); ++i) joint_index_[joints[i].name] = static_cast<int>(i);
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    joint_index_[joints[i].name] = static_cast<int>(i);
 }
 
 int RobotModel::linkIndex(const std::string& n) const {
@@ -34,13 +39,15 @@ int RobotModel::jointIndex(const std::string& n) const {
 
 int RobotModel::linkIndexOrThrow(const std::string& n) const {
   const int i = linkIndex(n);
-  if (i < 0) throw std::out_of_range("robot '" + name + "' (" + source + ") has no link '" + n + "'");
+  if (i < 0)
+    throw std::out_of_range("robot '" + name + "' (" + source + ") has no link '" + n + "'");
   return i;
 }
 
 int RobotModel::jointIndexOrThrow(const std::string& n) const {
   const int i = jointIndex(n);
-  if (i < 0) throw std::out_of_range("robot '" + name + "' (" + source + ") has no joint '" + n + "'");
+  if (i < 0)
+    throw std::out_of_range("robot '" + name + "' (" + source + ") has no joint '" + n + "'");
   return i;
 }
 

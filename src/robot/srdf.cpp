@@ -44,7 +44,8 @@ Srdf parseSrdf(const std::string& text, const std::string& file) {
   TiXmlDocument doc;
   xml::parse(doc, text, file);
   const TiXmlElement* robot = doc.RootElement();
-  if (!robot || std::string(robot->Value()) != "robot") xml::fail(file, robot, "the root element is not <robot>");
+  if (!robot || std::string(robot->Value()) != "robot")
+    xml::fail(file, robot, "the root element is not <robot>");
   Srdf srdf;
   srdf.source = file;
   if (const char* n = robot->Attribute("name")) srdf.name = n;
@@ -55,10 +56,14 @@ Srdf parseSrdf(const std::string& text, const std::string& file) {
       g.name = required(e, "name", file);
       for (const TiXmlElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
         const std::string ct = c->Value();
-        if (ct == "joint") g.joints.push_back(required(c, "name", file));
-        else if (ct == "link") g.links.push_back(required(c, "name", file));
-        else if (ct == "group") g.subgroups.push_back(required(c, "name", file));
-        else if (ct == "chain") g.chains.push_back({required(c, "base_link", file), required(c, "tip_link", file)});
+        if (ct == "joint")
+          g.joints.push_back(required(c, "name", file));
+        else if (ct == "link")
+          g.links.push_back(required(c, "name", file));
+        else if (ct == "group")
+          g.subgroups.push_back(required(c, "name", file));
+        else if (ct == "chain")
+          g.chains.push_back({required(c, "base_link", file), required(c, "tip_link", file)});
       }
       srdf.groups.push_back(std::move(g));
     } else if (tag == "disable_collisions") {
@@ -69,13 +74,17 @@ Srdf parseSrdf(const std::string& text, const std::string& file) {
       SrdfGroupState s;
       s.name = required(e, "name", file);
       s.group = required(e, "group", file);
-      for (const TiXmlElement* c = e->FirstChildElement("joint"); c; c = c->NextSiblingElement("joint")) {
+      for (const TiXmlElement* c = e->FirstChildElement("joint"); c;
+           c = c->NextSiblingElement("joint")) {
         const std::string jn = required(c, "name", file);
         const char* v = c->Attribute("value");
         if (!v) continue;  // e.g. <joint name="panda_finger_joint1"/> in some files: no value given
-        const auto vals = xml::numbers(v, -1, file, c, "group_state '" + s.name + "' joint '" + jn + "' value");
+        const auto vals =
+            xml::numbers(v, -1, file, c, "group_state '" + s.name + "' joint '" + jn + "' value");
         if (vals.size() != 1)
-          xml::fail(file, c, "group_state '" + s.name + "' joint '" + jn + "': expected one value (multi-DOF joints are not supported)");
+          xml::fail(file, c,
+                    "group_state '" + s.name + "' joint '" + jn +
+                        "': expected one value (multi-DOF joints are not supported)");
         s.values.emplace_back(jn, vals[0]);
       }
       srdf.group_states.push_back(std::move(s));
@@ -91,7 +100,8 @@ Srdf parseSrdf(const std::string& text, const std::string& file) {
   return srdf;
 }
 
-std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf, const std::string& name) {
+std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf,
+                                   const std::string& name) {
   std::set<int> joints;
   std::set<std::string> visiting;
   auto isVirtual = [&](const std::string& j) {
@@ -106,19 +116,23 @@ std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf, co
     for (const auto& j : g->joints) {
       if (isVirtual(j)) continue;
       const int ji = model.jointIndex(j);
-      if (ji < 0) throw std::runtime_error(where + " names joint '" + j + "' that robot '" + model.name + "' lacks");
+      if (ji < 0)
+        throw std::runtime_error(where + " names joint '" + j + "' that robot '" + model.name +
+                                 "' lacks");
       joints.insert(ji);
     }
     for (const auto& l : g->links) {
       const int li = model.linkIndex(l);
-      if (li < 0) throw std::runtime_error(where + " names link '" + l + "' that robot '" + model.name + "' lacks");
+      if (li < 0)
+        throw std::runtime_error(where + " names link '" + l + "' that robot '" + model.name +
+                                 "' lacks");
       if (model.links[li].parent_joint >= 0) joints.insert(model.links[li].parent_joint);
     }
     for (const auto& c : g->chains) {
       const int base = model.linkIndex(c.base_link), tip = model.linkIndex(c.tip_link);
       if (base < 0 || tip < 0)
-        throw std::runtime_error(where + " chain names a link that robot '" + model.name + "' lacks ('" +
-                                 (base < 0 ? c.base_link : c.tip_link) + "')");
+        throw std::runtime_error(where + " chain names a link that robot '" + model.name +
+                                 "' lacks ('" + (base < 0 ? c.base_link : c.tip_link) + "')");
       int l = tip;
       std::vector<int> chain;
       while (l != base && l >= 0) {
@@ -126,7 +140,8 @@ std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf, co
         l = model.links[l].parent_link;
       }
       if (l != base)
-        throw std::runtime_error(where + " chain: '" + c.base_link + "' is not an ancestor of '" + c.tip_link + "'");
+        throw std::runtime_error(where + " chain: '" + c.base_link + "' is not an ancestor of '" +
+                                 c.tip_link + "'");
       joints.insert(chain.begin(), chain.end());
     }
     for (const auto& s : g->subgroups) add(s);
@@ -143,7 +158,8 @@ std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf, co
 std::vector<std::string> checkSrdfAgainstModel(const RobotModel& model, const Srdf& srdf) {
   std::vector<std::string> out;
   auto link = [&](const std::string& l, const std::string& ctx) {
-    if (model.linkIndex(l) < 0) out.push_back(srdf.source + ": " + ctx + " names missing link '" + l + "'");
+    if (model.linkIndex(l) < 0)
+      out.push_back(srdf.source + ": " + ctx + " names missing link '" + l + "'");
   };
   for (const auto& p : srdf.disabled_collisions) {
     link(p.link1, "disable_collisions");
@@ -159,7 +175,8 @@ std::vector<std::string> checkSrdfAgainstModel(const RobotModel& model, const Sr
   for (const auto& s : srdf.group_states)
     for (const auto& [j, v] : s.values)
       if (model.jointIndex(j) < 0)
-        out.push_back(srdf.source + ": group_state '" + s.name + "' names missing joint '" + j + "'");
+        out.push_back(srdf.source + ": group_state '" + s.name + "' names missing joint '" + j +
+                      "'");
   return out;
 }
 

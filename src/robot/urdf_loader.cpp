@@ -2,6 +2,9 @@
 // elements (so none is dropped silently) and for strict validation of every <origin>.
 #include "dss/robot/urdf_loader.h"
 
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,9 +12,6 @@
 #include <iostream>
 #include <map>
 #include <sstream>
-
-#include <console_bridge/console.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include "dss/mesh/mesh.h"
 #include "xml_util.h"
@@ -49,7 +49,7 @@ struct ScannedCollision {
 };
 
 struct Scan {
-  std::vector<std::string> joint_order;  // document order
+  std::vector<std::string> joint_order;                             // document order
   std::map<std::string, std::vector<ScannedCollision>> collisions;  // per link
   std::map<std::string, const TiXmlElement*> link_elements;
   std::map<std::string, const TiXmlElement*> joint_elements;
@@ -71,14 +71,17 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
         const TiXmlElement* c = e->FirstChildElement(child);
         if (!c) continue;
         const std::string what = std::string("joint '") + name + "'";
-        if (std::string(child) == "origin") xml::origin(c, file, what);
-        else if (const char* xyz = c->Attribute("xyz")) xml::numbers(xyz, 3, file, c, what + " axis");
+        if (std::string(child) == "origin")
+          xml::origin(c, file, what);
+        else if (const char* xyz = c->Attribute("xyz"))
+          xml::numbers(xyz, 3, file, c, what + " axis");
       }
     } else if (tag == "link") {
       if (!name) xml::fail(file, e, "<link> without a name");
       scan.link_elements[name] = e;
       auto& list = scan.collisions[name];
-      for (const TiXmlElement* c = e->FirstChildElement("collision"); c; c = c->NextSiblingElement("collision"))
+      for (const TiXmlElement* c = e->FirstChildElement("collision"); c;
+           c = c->NextSiblingElement("collision"))
         list.push_back({c, static_cast<int>(list.size())});
     }
   }
@@ -110,7 +113,8 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
     if (!text) xml::fail(file, g, what + " <" + type + "> lacks attribute '" + attribute + "'");
     auto v = xml::numbers(text, count, file, g, what + " <" + type + "> " + attribute);
     for (double x : v)
-      if (x < 0) xml::fail(file, g, what + " <" + type + "> " + attribute + " '" + text + "' is negative");
+      if (x < 0)
+        xml::fail(file, g, what + " <" + type + "> " + attribute + " '" + text + "' is negative");
     return v;
   };
   if (type == "box") {
@@ -132,9 +136,12 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
     Eigen::Vector3d scale = Eigen::Vector3d::Ones();
     if (const char* s = g->Attribute("scale")) {
       const auto v = xml::numbers(s, -1, file, g, what + " <mesh> scale");
-      if (v.size() == 1) scale.setConstant(v[0]);
-      else if (v.size() == 3) scale = Eigen::Vector3d(v[0], v[1], v[2]);
-      else xml::fail(file, g, what + " <mesh> scale '" + s + "': expected 1 or 3 numbers");
+      if (v.size() == 1)
+        scale.setConstant(v[0]);
+      else if (v.size() == 3)
+        scale = Eigen::Vector3d(v[0], v[1], v[2]);
+      else
+        xml::fail(file, g, what + " <mesh> scale '" + s + "': expected 1 or 3 numbers");
     }
     std::vector<std::string> tried;
     const auto path = resolveMeshUri(uri, base_dir, options.mesh_paths, &tried);
@@ -179,8 +186,8 @@ RobotModel loadUrdf(const std::string& path, const LoadOptions& options) {
   return loadUrdfString(ss.str(), path, dir.string(), options);
 }
 
-RobotModel loadUrdfString(const std::string& text, const std::string& file, const std::string& base_dir,
-                          const LoadOptions& options) {
+RobotModel loadUrdfString(const std::string& text, const std::string& file,
+                          const std::string& base_dir, const LoadOptions& options) {
   TiXmlDocument doc;
   xml::parse(doc, text, file);
   const Scan scan = scanDocument(doc, file);
@@ -206,10 +213,12 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
   model.source = file;
   for (const auto& l : capture.lines) {  // urdfdom repeats some messages
     const std::string w = file + ": urdfdom: " + l;
-    if (std::find(model.warnings.begin(), model.warnings.end(), w) == model.warnings.end()) model.warnings.push_back(w);
+    if (std::find(model.warnings.begin(), model.warnings.end(), w) == model.warnings.end())
+      model.warnings.push_back(w);
   }
   std::map<std::string, int> joint_doc_index;
-  for (std::size_t i = 0; i < scan.joint_order.size(); ++i) joint_doc_index[scan.joint_order[i]] = int(i);
+  for (std::size_t i = 0; i < scan.joint_order.size(); ++i)
+    joint_doc_index[scan.joint_order[i]] = int(i);
 
   // Depth-first from the root, children in document order.
   const urdf::LinkConstSharedPtr root = urdf->getRoot();
@@ -239,27 +248,39 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
     // Joints are numbered when their child link is visited; push in reverse for document order.
     std::vector<Item> next;
     for (const auto& uj : children) {
-      const TiXmlElement* je = scan.joint_elements.count(uj->name) ? scan.joint_elements.at(uj->name) : nullptr;
+      const TiXmlElement* je =
+          scan.joint_elements.count(uj->name) ? scan.joint_elements.at(uj->name) : nullptr;
       const std::string what = "joint '" + uj->name + "'";
       RobotJoint j;
       j.name = uj->name;
       j.parent_link = li;
       j.X_PJ = toIsometry(uj->parent_to_joint_origin_transform);
       switch (uj->type) {
-        case urdf::Joint::FIXED: j.type = JointType::kFixed; break;
-        case urdf::Joint::REVOLUTE: j.type = JointType::kRevolute; break;
-        case urdf::Joint::CONTINUOUS: j.type = JointType::kContinuous; break;
-        case urdf::Joint::PRISMATIC: j.type = JointType::kPrismatic; break;
+        case urdf::Joint::FIXED:
+          j.type = JointType::kFixed;
+          break;
+        case urdf::Joint::REVOLUTE:
+          j.type = JointType::kRevolute;
+          break;
+        case urdf::Joint::CONTINUOUS:
+          j.type = JointType::kContinuous;
+          break;
+        case urdf::Joint::PRISMATIC:
+          j.type = JointType::kPrismatic;
+          break;
         case urdf::Joint::FLOATING:
         case urdf::Joint::PLANAR:
-          xml::fail(file, je, what + " is " + (uj->type == urdf::Joint::FLOATING ? "floating" : "planar") +
-                                  ": floating and planar joints are not supported (place the robot's base "
-                                  "with a fixed pose instead)");
-        default: xml::fail(file, je, what + " has an unknown type");
+          xml::fail(file, je,
+                    what + " is " + (uj->type == urdf::Joint::FLOATING ? "floating" : "planar") +
+                        ": floating and planar joints are not supported (place the robot's base "
+                        "with a fixed pose instead)");
+        default:
+          xml::fail(file, je, what + " has an unknown type");
       }
       if (j.isMoving()) {
         Eigen::Vector3d a(uj->axis.x, uj->axis.y, uj->axis.z);
-        if (!a.allFinite() || a.norm() < 1e-12) xml::fail(file, je, what + " has a zero or invalid axis");
+        if (!a.allFinite() || a.norm() < 1e-12)
+          xml::fail(file, je, what + " has a zero or invalid axis");
         j.axis = a.normalized();
         if (uj->limits) {
           j.limits.velocity = uj->limits->velocity;
@@ -269,8 +290,9 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
             j.limits.lower = uj->limits->lower;
             j.limits.upper = uj->limits->upper;
             if (!(j.limits.lower <= j.limits.upper))
-              xml::fail(file, je, what + " has lower limit " + std::to_string(j.limits.lower) +
-                                      " above upper limit " + std::to_string(j.limits.upper));
+              xml::fail(file, je,
+                        what + " has lower limit " + std::to_string(j.limits.lower) +
+                            " above upper limit " + std::to_string(j.limits.upper));
           }
         } else if (j.type != JointType::kContinuous) {
           xml::fail(file, je, what + " has no <limit>");
@@ -291,7 +313,8 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
       const int ji = static_cast<int>(model.joints.size());
       model.joints.push_back(j);
       const auto child = urdf->getLink(uj->child_link_name);
-      if (!child) xml::fail(file, je, what + " names a missing child link '" + uj->child_link_name + "'");
+      if (!child)
+        xml::fail(file, je, what + " names a missing child link '" + uj->child_link_name + "'");
       next.push_back({child, ji});
     }
     for (auto it = next.rbegin(); it != next.rend(); ++it) stack.push_back(*it);
@@ -328,9 +351,12 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
     const TiXmlElement* je = scan.joint_elements.at(j.name);
     const RobotJoint* cur = &j;
     for (std::size_t steps = 0;; ++steps) {
-      if (steps > model.joints.size()) xml::fail(file, je, "joint '" + j.name + "': cyclic <mimic> chain");
+      if (steps > model.joints.size())
+        xml::fail(file, je, "joint '" + j.name + "': cyclic <mimic> chain");
       const int li = model.jointIndex(cur->mimic.leader);
-      if (li < 0) xml::fail(file, je, "joint '" + j.name + "' mimics a missing joint '" + cur->mimic.leader + "'");
+      if (li < 0)
+        xml::fail(file, je,
+                  "joint '" + j.name + "' mimics a missing joint '" + cur->mimic.leader + "'");
       const RobotJoint& leader = model.joints[li];
       if (!leader.isMoving())
         xml::fail(file, je, "joint '" + j.name + "' mimics the fixed joint '" + leader.name + "'");
@@ -340,7 +366,8 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
     // q_j = m_j * q_leader + o_j along the chain j -> ... -> an active joint, composed from
     // the active end.
     std::vector<const RobotJoint*> chain;
-    for (const RobotJoint* c = &j; !c->mimic.leader.empty(); c = &model.joints[model.jointIndex(c->mimic.leader)])
+    for (const RobotJoint* c = &j; !c->mimic.leader.empty();
+         c = &model.joints[model.jointIndex(c->mimic.leader)])
       chain.push_back(c);
     double mult = 1.0, off = 0.0;
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
@@ -362,12 +389,15 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file, cons
       for (const auto& sc : it->second) {
         std::string why;
         auto c = makeCollision(sc, link.name, file, base_dir, options, cache, why);
-        if (c) link.collisions.push_back(std::move(*c));
-        else dropped.push_back(why);
+        if (c)
+          link.collisions.push_back(std::move(*c));
+        else
+          dropped.push_back(why);
       }
     }
     if (!dropped.empty()) {
-      std::string msg = std::to_string(dropped.size()) + " <collision> element(s) did not become a shape:";
+      std::string msg =
+          std::to_string(dropped.size()) + " <collision> element(s) did not become a shape:";
       for (const auto& d : dropped) msg += "\n  " + d;
       if (!options.allow_dropped_collisions) throw std::runtime_error(file + ": " + msg);
       std::cerr << "WARNING: " << file << ": " << msg << "\n";

@@ -2,6 +2,9 @@
 // messages that carry the file and line of the element.
 #pragma once
 
+#include <tinyxml.h>
+
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -9,16 +12,14 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
-#include <tinyxml.h>
-
 namespace dss::xml {
 
 inline std::string where(const std::string& file, const TiXmlElement* e) {
   return file + ":" + std::to_string(e ? e->Row() : 0);
 }
 
-[[noreturn]] inline void fail(const std::string& file, const TiXmlElement* e, const std::string& what) {
+[[noreturn]] inline void fail(const std::string& file, const TiXmlElement* e,
+                              const std::string& what) {
   throw std::runtime_error(where(file, e) + ": " + what);
 }
 
@@ -27,7 +28,8 @@ inline void parse(TiXmlDocument& doc, const std::string& text, const std::string
   doc.Parse(text.c_str());
   if (doc.Error())
     throw std::runtime_error(file + ":" + std::to_string(doc.ErrorRow()) + ":" +
-                             std::to_string(doc.ErrorCol()) + ": malformed XML: " + doc.ErrorDesc());
+                             std::to_string(doc.ErrorCol()) +
+                             ": malformed XML: " + doc.ErrorDesc());
 }
 
 /// Whitespace-separated finite numbers; `count` < 0 accepts any count.
@@ -48,17 +50,21 @@ inline std::vector<double> numbers(const std::string& text, int count, const std
   return out;
 }
 
-inline const char* attr(const TiXmlElement* e, const char* name) { return e ? e->Attribute(name) : nullptr; }
+inline const char* attr(const TiXmlElement* e, const char* name) {
+  return e ? e->Attribute(name) : nullptr;
+}
 
 /// The URDF rotation of roll-pitch-yaw angles: R = Rz(yaw) Ry(pitch) Rx(roll).
 inline Eigen::Matrix3d rpy(double r, double p, double y) {
-  return (Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
+  return (Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(r, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
 }
 
 /// The pose of an <origin xyz rpy> element (identity when absent).
-inline Eigen::Isometry3d origin(const TiXmlElement* o, const std::string& file, const std::string& what) {
+inline Eigen::Isometry3d origin(const TiXmlElement* o, const std::string& file,
+                                const std::string& what) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   if (!o) return X;
   if (const char* xyz = o->Attribute("xyz")) {

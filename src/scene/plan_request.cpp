@@ -24,7 +24,8 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
   r.source = source;
   r.group_name = y.string(y.require(root, "group_name", "request"), "group_name");
   if (r.group_name.empty()) y.fail(root["group_name"], "request: empty group_name");
-  if (YamlReader::has(root, "planner_id")) r.planner_id = y.string(root["planner_id"], "planner_id");
+  if (YamlReader::has(root, "planner_id"))
+    r.planner_id = y.string(root["planner_id"], "planner_id");
   if (YamlReader::has(root, "allowed_planning_time"))
     r.allowed_planning_time = y.number(root["allowed_planning_time"], "allowed_planning_time");
   if (YamlReader::has(root, "num_planning_attempts"))
@@ -62,22 +63,23 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
       r.warnings.push_back(y.at(att) + ": attached collision objects in the start state ignored");
   }
 
-  const YAML::Node goals = y.sequence(y.require(root, "goal_constraints", "request"),
-                                      "goal_constraints");
+  const YAML::Node goals =
+      y.sequence(y.require(root, "goal_constraints", "request"), "goal_constraints");
   if (goals.size() == 0) y.fail(goals, "request: goal_constraints is empty");
   for (std::size_t g = 0; g < goals.size(); ++g) {
     const std::string ge = "goal_constraints[" + std::to_string(g) + "]";
     const YAML::Node gc = goals[g];
     if (!gc.IsMap()) y.fail(gc, ge + ": expected a mapping");
-    for (const char* other : {"position_constraints", "orientation_constraints",
-                              "visibility_constraints"}) {
+    for (const char* other :
+         {"position_constraints", "orientation_constraints", "visibility_constraints"}) {
       const YAML::Node o = YamlReader::optional(gc, other);
       if (o.IsDefined() && o.IsSequence() && o.size() > 0)
         y.fail(o, ge + ": " + other + " not supported (joint goals only)");
     }
     GoalConstraint goal;
     if (YamlReader::has(gc, "name")) goal.name = y.string(gc["name"], ge + " name");
-    const YAML::Node jcs = y.sequence(y.require(gc, "joint_constraints", ge), ge + " joint_constraints");
+    const YAML::Node jcs =
+        y.sequence(y.require(gc, "joint_constraints", ge), ge + " joint_constraints");
     if (jcs.size() == 0) y.fail(jcs, ge + ": no joint constraints");
     for (const auto& jc : jcs) {
       JointConstraint c;
@@ -88,8 +90,7 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
         c.tolerance_above = y.number(jc["tolerance_above"], ce + " tolerance_above");
       if (YamlReader::has(jc, "tolerance_below"))
         c.tolerance_below = y.number(jc["tolerance_below"], ce + " tolerance_below");
-      if (c.tolerance_above < 0 || c.tolerance_below < 0)
-        y.fail(jc, ce + ": negative tolerance");
+      if (c.tolerance_above < 0 || c.tolerance_below < 0) y.fail(jc, ce + ": negative tolerance");
       if (YamlReader::has(jc, "weight")) c.weight = y.number(jc["weight"], ce + " weight");
       goal.joint_constraints.push_back(c);
     }
@@ -113,7 +114,8 @@ std::vector<std::string> checkRequestJoints(const PlanRequest& request,
     for (const auto& c : request.goals[g].joint_constraints)
       if (!movable.count(c.joint_name))
         throw SceneError(request.source + ": goal_constraints[" + std::to_string(g) +
-                         "] names joint '" + c.joint_name + "', which is not a movable joint of "
+                         "] names joint '" + c.joint_name +
+                         "', which is not a movable joint of "
                          "the robot");
   return ignored;
 }

@@ -85,8 +85,8 @@ class SceneYamlReader {
         const YAML::Node pos = y_.sequence(y_.require(js, "position", "robot_state.joint_state"),
                                            "joint_state.position");
         if (names.size() != pos.size())
-          y_.fail(js, "robot_state.joint_state: " + std::to_string(names.size()) +
-                          " names but " + std::to_string(pos.size()) + " positions");
+          y_.fail(js, "robot_state.joint_state: " + std::to_string(names.size()) + " names but " +
+                          std::to_string(pos.size()) + " positions");
         for (std::size_t i = 0; i < names.size(); ++i) {
           const std::string n = y_.string(names[i], "joint_state.name");
           scene.robot_state[n] = y_.number(pos[i], "joint_state.position of '" + n + "'");
@@ -117,9 +117,8 @@ class SceneYamlReader {
     for (const auto& t : list) {
       const std::string child =
           y_.string(y_.require(t, "child_frame_id", "fixed_frame_transforms"), "child_frame_id");
-      const Eigen::Isometry3d X =
-          y_.transform(y_.require(t, "transform", "fixed frame '" + child + "'"),
-                       "fixed frame '" + child + "'");
+      const Eigen::Isometry3d X = y_.transform(
+          y_.require(t, "transform", "fixed frame '" + child + "'"), "fixed frame '" + child + "'");
       std::string key = (!child.empty() && child[0] == '/') ? child.substr(1) : child;
       scene.fixed_frames[key] = X;
     }
@@ -128,10 +127,10 @@ class SceneYamlReader {
   void readAcm(const YAML::Node& acm, Scene& scene) {
     if (!acm.IsMap()) y_.fail(acm, "allowed_collision_matrix: expected a mapping");
     if (YamlReader::has(acm, "entry_names") || YamlReader::has(acm, "entry_values")) {
-      const YAML::Node names = y_.sequence(
-          y_.require(acm, "entry_names", "allowed_collision_matrix"), "entry_names");
-      const YAML::Node values = y_.sequence(
-          y_.require(acm, "entry_values", "allowed_collision_matrix"), "entry_values");
+      const YAML::Node names =
+          y_.sequence(y_.require(acm, "entry_names", "allowed_collision_matrix"), "entry_names");
+      const YAML::Node values =
+          y_.sequence(y_.require(acm, "entry_values", "allowed_collision_matrix"), "entry_values");
       const std::size_t n = names.size();
       if (values.size() != n)
         y_.fail(values, "allowed_collision_matrix: " + std::to_string(n) + " entry_names but " +
@@ -141,13 +140,13 @@ class SceneYamlReader {
       for (std::size_t i = 0; i < n; ++i) {
         // Rows are either plain lists of booleans or {enabled: [...]} (moveit_msgs).
         // (yaml-cpp's Node::operator= writes through to the tree, so no reassignment here.)
-        const YAML::Node row = values[i].IsMap()
-                                   ? y_.require(values[i], "enabled", "allowed_collision_matrix row")
-                                   : YAML::Node(values[i]);
+        const YAML::Node row =
+            values[i].IsMap() ? y_.require(values[i], "enabled", "allowed_collision_matrix row")
+                              : YAML::Node(values[i]);
         y_.sequence(row, "allowed_collision_matrix row '" + name[i] + "'");
         if (row.size() != n)
-          y_.fail(row, "allowed_collision_matrix row '" + name[i] + "': " +
-                           std::to_string(row.size()) + " values for " + std::to_string(n) +
+          y_.fail(row, "allowed_collision_matrix row '" + name[i] +
+                           "': " + std::to_string(row.size()) + " values for " + std::to_string(n) +
                            " names");
         for (std::size_t j = 0; j < n; ++j)
           if (boolean(row[j], "allowed_collision_matrix row '" + name[i] + "'") && i != j)
@@ -160,8 +159,9 @@ class SceneYamlReader {
           y_.sequence(y_.require(acm, "default_entry_values", "allowed_collision_matrix"),
                       "default_entry_values");
       if (values.size() != names.size())
-        y_.fail(values, "allowed_collision_matrix: default_entry_names and default_entry_values "
-                        "differ in length");
+        y_.fail(values,
+                "allowed_collision_matrix: default_entry_names and default_entry_values "
+                "differ in length");
       for (std::size_t i = 0; i < names.size(); ++i)
         if (boolean(values[i], "default_entry_values"))
           scene.allowed_collisions.allowAlways(y_.string(names[i], "default_entry_names"));
@@ -227,7 +227,8 @@ class SceneYamlReader {
       const YAML::Node meshes = y_.sequence(obj["meshes"], elem + " meshes");
       const YAML::Node poses = YamlReader::optional(obj, "mesh_poses");
       if (meshes.size() > 0) {
-        if (!poses.IsDefined() || poses.IsNull()) y_.fail(obj, elem + ": missing field 'mesh_poses'");
+        if (!poses.IsDefined() || poses.IsNull())
+          y_.fail(obj, elem + ": missing field 'mesh_poses'");
         y_.sequence(poses, elem + " mesh_poses");
         if (poses.size() != meshes.size())
           y_.fail(poses, elem + ": " + std::to_string(meshes.size()) + " meshes but " +
@@ -255,8 +256,8 @@ class SceneYamlReader {
       o.X_FO = X_FObj * parts[k].X_ObjS;
       o.X_WO = o.X_FO;
       o.frame_resolved = false;
-      o.description = describeShape(parts[k].shape) + " (" + y_.file() + ", " +
-                      parts[k].description + ")";
+      o.description =
+          describeShape(parts[k].shape) + " (" + y_.file() + ", " + parts[k].description + ")";
       o.shape = std::move(parts[k].shape);
       scene.obstacles.push_back(std::move(o));
     }
@@ -267,11 +268,16 @@ class SceneYamlReader {
     const YAML::Node t = y_.require(p, "type", pe);
     const std::string ts = lower(y_.string(t, pe + " type"));
     int type = 0;
-    if (ts == "box" || ts == "1") type = kBoxType;
-    else if (ts == "sphere" || ts == "2") type = kSphereType;
-    else if (ts == "cylinder" || ts == "3") type = kCylinderType;
-    else if (ts == "cone" || ts == "4") type = kConeType;
-    else y_.fail(t, pe + ": unknown primitive type '" + t.Scalar() + "'");
+    if (ts == "box" || ts == "1")
+      type = kBoxType;
+    else if (ts == "sphere" || ts == "2")
+      type = kSphereType;
+    else if (ts == "cylinder" || ts == "3")
+      type = kCylinderType;
+    else if (ts == "cone" || ts == "4")
+      type = kConeType;
+    else
+      y_.fail(t, pe + ": unknown primitive type '" + t.Scalar() + "'");
     const YAML::Node dims = y_.sequence(y_.require(p, "dimensions", pe), pe + " dimensions");
     const std::size_t want = type == kBoxType ? 3 : type == kSphereType ? 1 : 2;
     if (dims.size() != want)
@@ -283,10 +289,14 @@ class SceneYamlReader {
       scene_detail::checkSize(d[i], "dimension " + std::to_string(i), y_.at(dims) + ": " + pe);
     }
     switch (type) {
-      case kBoxType: return Box::fromSize(Eigen::Vector3d(d[0], d[1], d[2]));
-      case kSphereType: return Sphere{d[0]};
-      case kCylinderType: return Cylinder::fromLength(d[1], d[0]);  // [height, radius]
-      default: return Cone::fromLength(d[1], d[0]);                  // [height, radius]
+      case kBoxType:
+        return Box::fromSize(Eigen::Vector3d(d[0], d[1], d[2]));
+      case kSphereType:
+        return Sphere{d[0]};
+      case kCylinderType:
+        return Cylinder::fromLength(d[1], d[0]);  // [height, radius]
+      default:
+        return Cone::fromLength(d[1], d[0]);  // [height, radius]
     }
   }
 

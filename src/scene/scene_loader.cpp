@@ -13,7 +13,8 @@ namespace dss {
 
 Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".yaml" || ext == ".yml") return loadPlanningSceneYaml(path, options);
   if (ext == ".scene") return loadSceneText(path);
   if (ext == ".urdf" || ext == ".xml") return loadUrdfWorld(path, options);

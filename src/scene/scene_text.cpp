@@ -168,8 +168,10 @@ class SceneTextReader {
         const auto d = numbers(2, se + " " + type + " radius and length", &dl);
         scene_detail::checkSize(d[0], "radius", at(*dl) + ": " + se);
         scene_detail::checkSize(d[1], "length", at(*dl) + ": " + se);
-        if (type == "cylinder") shape = Cylinder::fromLength(d[0], d[1]);
-        else shape = Cone::fromLength(d[0], d[1]);
+        if (type == "cylinder")
+          shape = Cylinder::fromLength(d[0], d[1]);
+        else
+          shape = Cone::fromLength(d[0], d[1]);
       } else if (type == "mesh") {
         shape = readMesh(se, tl);
       } else if (type == "plane") {

@@ -1,8 +1,6 @@
 // Checked inputs and mesh URIs for the scene readers.
 #include "scene_util.h"
 
-#include "dss/mesh/mesh_paths.h"
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +8,7 @@
 #include <sstream>
 
 #include "dss/mesh/mesh.h"
+#include "dss/mesh/mesh_paths.h"
 #include "dss/scene/scene_error.h"
 
 namespace fs = std::filesystem;

@@ -2,10 +2,9 @@
 // URIs turned into files and convex hulls.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/core/convex_hull.h"
 #include "dss/scene/scene_load_options.h"

@@ -2,16 +2,16 @@
 // joints held still (see urdf_world.h for the decision on movable joints).
 #include "dss/scene/urdf_world.h"
 
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <set>
 #include <sstream>
-
-#include <tinyxml.h>
-#include <urdf_parser/urdf_parser.h>
-#include <console_bridge/console.h>
 
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
@@ -38,9 +38,9 @@ class CaptureGuard {
 
 Eigen::Isometry3d toIsometry(const urdf::Pose& p, const std::string& where) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = scene_detail::checkedQuaternion(p.rotation.x, p.rotation.y, p.rotation.z,
-                                               p.rotation.w, where)
-                   .toRotationMatrix();
+  X.linear() =
+      scene_detail::checkedQuaternion(p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w, where)
+          .toRotationMatrix();
   X.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
   if (!X.translation().allFinite()) throw SceneError(where + ": non-finite position");
   return X;
@@ -101,7 +101,7 @@ class UrdfWorldReader {
     std::set<std::string> unused;
     for (const auto& kv : options_.joint_values) unused.insert(kv.first);
     std::function<double(const urdf::Joint&, int)> value = [&](const urdf::Joint& j,
-                                                                int depth) -> double {
+                                                               int depth) -> double {
       const std::string where = path_ + ": joint '" + j.name + "'";
       if (depth > 64) throw SceneError(where + ": mimic chain too long (a cycle?)");
       if (j.mimic) {
@@ -131,31 +131,37 @@ class UrdfWorldReader {
             Eigen::Isometry3d X_PJ = toIsometry(j->parent_to_joint_origin_transform, where);
             Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
             switch (j->type) {
-              case urdf::Joint::FIXED: break;
+              case urdf::Joint::FIXED:
+                break;
               case urdf::Joint::REVOLUTE:
               case urdf::Joint::CONTINUOUS:
               case urdf::Joint::PRISMATIC: {
                 if (options_.urdf_require_fixed_joints)
-                  throw SceneError(where + ": movable joint in a URDF world (only fixed joints "
-                                           "are accepted with urdf_require_fixed_joints)");
+                  throw SceneError(where +
+                                   ": movable joint in a URDF world (only fixed joints "
+                                   "are accepted with urdf_require_fixed_joints)");
                 const double q = value(*j, 0);
                 Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
                 if (!axis.allFinite() || axis.norm() < 1e-12)
                   throw SceneError(where + ": zero or non-finite axis");
                 axis.normalize();
-                if (j->type == urdf::Joint::PRISMATIC) motion.translation() = q * axis;
-                else motion.linear() = Eigen::AngleAxisd(q, axis).toRotationMatrix();
+                if (j->type == urdf::Joint::PRISMATIC)
+                  motion.translation() = q * axis;
+                else
+                  motion.linear() = Eigen::AngleAxisd(q, axis).toRotationMatrix();
                 std::ostringstream s;
                 s << where << ": movable joint held at " << q << " in the world";
                 scene.warnings.push_back(s.str());
                 break;
               }
               default:
-                throw SceneError(where + ": floating and planar joints are not supported in a "
-                                         "URDF world");
+                throw SceneError(where +
+                                 ": floating and planar joints are not supported in a "
+                                 "URDF world");
             }
             auto child = model->getLink(j->child_link_name);
-            if (!child) throw SceneError(where + ": missing child link '" + j->child_link_name + "'");
+            if (!child)
+              throw SceneError(where + ": missing child link '" + j->child_link_name + "'");
             visit(*child, X * X_PJ * motion);
           }
         };

@@ -2,11 +2,11 @@
 // scene readers). yaml-cpp counts lines from 0; messages count from 1.
 #pragma once
 
-#include <cmath>
-#include <string>
+#include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
-#include <yaml-cpp/yaml.h>
+#include <cmath>
+#include <string>
 
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
@@ -95,8 +95,7 @@ class YamlReader {
   /// [x, y, z] or {x:, y:, z:}.
   Eigen::Vector3d vector3(const YAML::Node& n, const std::string& element) const {
     if (n.IsSequence()) {
-      if (n.size() != 3)
-        fail(n, element + ": expected 3 numbers, got " + std::to_string(n.size()));
+      if (n.size() != 3) fail(n, element + ": expected 3 numbers, got " + std::to_string(n.size()));
       return {number(n[0], element), number(n[1], element), number(n[2], element)};
     }
     if (n.IsMap())
@@ -126,8 +125,8 @@ class YamlReader {
   Eigen::Isometry3d pose(const YAML::Node& n, const std::string& element) const {
     if (!n.IsMap()) fail(n, element + ": expected a pose {position, orientation}");
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = quaternion(require(n, "orientation", element), element + " orientation")
-                     .toRotationMatrix();
+    X.linear() =
+        quaternion(require(n, "orientation", element), element + " orientation").toRotationMatrix();
     X.translation() = vector3(require(n, "position", element), element + " position");
     return X;
   }

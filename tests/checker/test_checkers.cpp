@@ -5,14 +5,13 @@
 // the same answers as from one, with every check counted.
 #include <algorithm>
 #include <atomic>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <limits>
 #include <random>
 #include <thread>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/dss_checker.h"
@@ -41,7 +40,8 @@ double dssGap(const dss::AnyShape& a, const Eigen::Isometry3d& X_A, const dss::A
     return std::visit(
         [&](const auto& x) {
           using S = std::decay_t<decltype(x)>;
-          const dss::Posed<dss::detail::Ref<S>> p(dss::detail::Ref<S>{x}, X.linear(), X.translation());
+          const dss::Posed<dss::detail::Ref<S>> p(dss::detail::Ref<S>{x}, X.linear(),
+                                                  X.translation());
           return p.support(d, dss::Vec3d::Zero()).dot(d);
         },
         s);
@@ -84,7 +84,8 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
     BOOST_TEST_MESSAGE(mbm << " or " << robot_dir << " absent: skipped");
     return;
   }
-  const auto r = dss::loadRobot(robot_dir + "/" + robot + ".urdf", robot_dir + "/" + robot + ".srdf");
+  const auto r =
+      dss::loadRobot(robot_dir + "/" + robot + ".urdf", robot_dir + "/" + robot + ".srdf");
   double max_band = 0.0;
   std::size_t total = 0, hull_disagree = 0, mesh_free_dss_collide = 0, dss_free_mesh_collide = 0;
   double min_gap = std::numeric_limits<double>::infinity();
@@ -92,10 +93,11 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
     const std::string dir = mbm + "/" + folder;
     if (!fs::exists(dir + "/scene0001.yaml")) continue;
     const auto req = dss::loadPlanRequestYaml(dir + "/request0001.yaml");
-    const dss::ModelSetup p =
-        dss::setupModel(r, dss::loadScene(dir + "/scene0001.yaml"), req.group_name, req.startState());
+    const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(dir + "/scene0001.yaml"),
+                                              req.group_name, req.startState());
     auto d = dss::makeStateChecker(p.model, {"dss"});
-    auto fh = std::dynamic_pointer_cast<const dss::FclChecker>(dss::makeStateChecker(p.model, {"fcl-hull"}));
+    auto fh = std::dynamic_pointer_cast<const dss::FclChecker>(
+        dss::makeStateChecker(p.model, {"fcl-hull"}));
     BOOST_REQUIRE(fh);
     auto fm = dss::makeStateChecker(p.model, {"fcl-mesh"});
     const auto& m = *p.model;
@@ -108,10 +110,12 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
       const std::vector<double> q = dss_test::randomGroupState(m, rng);
       const dss::StateVerdict verdict_d = d->check(q.data()), verdict_h = fh->check(q.data()),
                               verdict_m = fm->check(q.data());
-      BOOST_TEST_REQUIRE((verdict_d != dss::StateVerdict::kInvalidInput && verdict_h != dss::StateVerdict::kInvalidInput &&
+      BOOST_TEST_REQUIRE((verdict_d != dss::StateVerdict::kInvalidInput &&
+                          verdict_h != dss::StateVerdict::kInvalidInput &&
                           verdict_m != dss::StateVerdict::kInvalidInput),
                          folder << " state " << k);
-      const bool vd = verdict_d == dss::StateVerdict::kFree, vh = verdict_h == dss::StateVerdict::kFree,
+      const bool vd = verdict_d == dss::StateVerdict::kFree,
+                 vh = verdict_h == dss::StateVerdict::kFree,
                  vm = verdict_m == dss::StateVerdict::kFree;
       ++total;
       valid += vd;
@@ -125,7 +129,8 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
                        const dss::AnyShape& sb, const Eigen::Isometry3d& X_B) {
         fcl::DistanceRequestd dreq;
         fcl::DistanceResultd dres;
-        dmin = std::min(dmin, std::abs(fcl::distance(fh->elementGeometry(e), X_A, gb, X_B, dreq, dres)));
+        dmin = std::min(dmin,
+                        std::abs(fcl::distance(fh->elementGeometry(e), X_A, gb, X_B, dreq, dres)));
         gmin = std::min(gmin, dssGap(m.elements()[e].source->shape, X_A, sb, X_B));
         return false;
       };
@@ -142,7 +147,8 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
       if (vd != vh) {
         ++hull_disagree;
         max_band = std::max(max_band, dmin);
-        BOOST_TEST_MESSAGE(folder << ": dss " << vd << " fcl-hull " << vh << ", min fcl distance " << dmin);
+        BOOST_TEST_MESSAGE(folder << ": dss " << vd << " fcl-hull " << vh << ", min fcl distance "
+                                  << dmin);
       }
       if (vd && !vm) {
         ++dss_free_mesh_collide;
@@ -151,12 +157,15 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
         BOOST_TEST(gmin > 0.0);  // certified by DSS's separating plane: really apart
       }
     }
-    BOOST_TEST_MESSAGE(folder << ": " << valid << " of " << num_states << " valid under dss; " << m.summary());
+    BOOST_TEST_MESSAGE(folder << ": " << valid << " of " << num_states << " valid under dss; "
+                              << m.summary());
   }
-  std::cout << "checker tests: " << total << " random " << robot << " states; dss vs fcl-hull disagree on "
-            << hull_disagree << " (max fcl distance among them " << max_band << " m); dss free where "
+  std::cout << "checker tests: " << total << " random " << robot
+            << " states; dss vs fcl-hull disagree on " << hull_disagree
+            << " (max fcl distance among them " << max_band << " m); dss free where "
             << "fcl-mesh collides: " << dss_free_mesh_collide << " (smallest DSS gap " << min_gap
-            << " m); dss colliding where fcl-mesh free (hull vs mesh): " << mesh_free_dss_collide << "\n";
+            << " m); dss colliding where fcl-mesh free (hull vs mesh): " << mesh_free_dss_collide
+            << "\n";
   // Near-contact band: disagreements only where the shapes are within 1 mm.
   BOOST_TEST(max_band < 1e-3);
   BOOST_TEST(hull_disagree * 100 <= total);

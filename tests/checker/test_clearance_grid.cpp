@@ -4,12 +4,11 @@
 // the balls that are clear, say nothing outside its region or for NaN, and an empty grid says
 // nothing at all.
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/clearance_grid.h"
 
@@ -51,14 +50,16 @@ BOOST_AUTO_TEST_CASE(clearance_grid_is_a_lower_bound) {
       clear_balls += inside && d > r + 0.1;
     }
   }
-  BOOST_TEST_MESSAGE("clearance grid settled " << settled << " balls; " << clear_balls << " inside with 0.1 m to spare");
+  BOOST_TEST_MESSAGE("clearance grid settled " << settled << " balls; " << clear_balls
+                                               << " inside with 0.1 m to spare");
   BOOST_TEST(settled >= clear_balls * 9 / 10);
   const dss::ClearanceGrid empty;
   BOOST_TEST(!empty.clear(Eigen::Vector3d::Zero(), 0.0));
   dss::Aabb region;
   region.lower = Eigen::Vector3d::Constant(-1.0);
   region.upper = Eigen::Vector3d::Constant(1.0);
-  const dss::ClearanceGrid grid(region, {dss::Aabb{Eigen::Vector3d::Constant(5.0), Eigen::Vector3d::Constant(6.0)}});
+  const dss::ClearanceGrid grid(
+      region, {dss::Aabb{Eigen::Vector3d::Constant(5.0), Eigen::Vector3d::Constant(6.0)}});
   const double nan = std::numeric_limits<double>::quiet_NaN();
   BOOST_TEST(grid.clear(Eigen::Vector3d::Zero(), 0.5));
   BOOST_TEST(!grid.clear(Eigen::Vector3d(nan, 0.0, 0.0), 0.0));

@@ -1,9 +1,8 @@
 // The collision model (collision_model.h) of our arm in its shelf scene: an obstacle no link can
 // reach is pruned, non-moving links are never checked against the scene, every self pair has a
 // moving link, and every moving link's geometry stays inside its reach ball at random states.
-#include <random>
-
 #include <boost/test/unit_test.hpp>
+#include <random>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/scene/scene_loader.h"
@@ -38,7 +37,8 @@ BOOST_AUTO_TEST_CASE(shelf_model_pairs_and_pruning) {
     const auto X = m.kinematics().linkPoses(q);
     for (const auto& s : m.slots()) {
       if (!s.moves) continue;
-      BOOST_TEST((X[s.link] * s.center_L - s.reach_center_W).norm() + s.radius <= s.reach_radius + 1e-9);
+      BOOST_TEST((X[s.link] * s.center_L - s.reach_center_W).norm() + s.radius <=
+                 s.reach_radius + 1e-9);
     }
   }
 }

@@ -4,14 +4,13 @@
 // fraction lies before the first colliding sample; a minimum fraction outside (0, 1] is
 // refused. (The OMPL motion validator on top of it: tests/planning.)
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/continuous_motion.h"
@@ -29,7 +28,9 @@ struct Arm {
 Arm loadArm(const std::string& urdf, const std::string& srdf, const std::string& scene_file) {
   Arm a;
   a.robot = dss::loadRobot(urdf, srdf);
-  a.model = dss::setupModel(a.robot, scene_file.empty() ? dss::Scene{} : dss::loadScene(scene_file), "", {}).model;
+  a.model = dss::setupModel(a.robot, scene_file.empty() ? dss::Scene{} : dss::loadScene(scene_file),
+                            "", {})
+                .model;
   a.checker = std::make_shared<const dss::DssChecker>(a.model);
   return a;
 }
@@ -110,14 +111,16 @@ void checkPaddings(const Arm& a, std::uint64_t seed) {
         for (std::size_t i = 0; i < q0.size(); ++i) qh[i] = 0.5 * (q0[i] + q1[i]);
         cmc.paddings(q0.data(), qh.data(), pad_half.data());
         for (std::size_t sl = 0; sl < m.slots().size(); ++sl)
-          if (pad[sl] > 1e-9) BOOST_TEST(pad_half[sl] < 0.3 * pad[sl]);  // 1/4 up to the 1e-12 floor
+          if (pad[sl] > 1e-9)
+            BOOST_TEST(pad_half[sl] < 0.3 * pad[sl]);  // 1/4 up to the 1e-12 floor
         BOOST_TEST(turn < 1.0);
       }
     }
   }
   BOOST_TEST(violations == 0);
   BOOST_TEST(checked > 10000);
-  BOOST_TEST_MESSAGE("paddings: " << checked << " probe positions, largest deviation / padding " << worst);
+  BOOST_TEST_MESSAGE("paddings: " << checked << " probe positions, largest deviation / padding "
+                                  << worst);
 }
 
 // Seeded random motions: when the continuous check accepts a motion, every state sampled
@@ -141,7 +144,8 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
     std::vector<double> qt(q0.size());
     const int kSamples = 2000;
     for (int step = 0; step <= kSamples && first_bad < 0; ++step) {
-      for (std::size_t i = 0; i < qt.size(); ++i) qt[i] = q0[i] + (double(step) / kSamples) * (q1[i] - q0[i]);
+      for (std::size_t i = 0; i < qt.size(); ++i)
+        qt[i] = q0[i] + (double(step) / kSamples) * (q1[i] - q0[i]);
       if (a.checker->collides(qt.data())) first_bad = step;
     }
     if (ok) {
@@ -158,15 +162,16 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
     BOOST_TEST(last >= 0.0);
     BOOST_TEST(last <= 1.0);
     for (std::size_t i = 0; i < qt.size(); ++i) qt[i] = q0[i] + last * (q1[i] - q0[i]);
-    BOOST_TEST(!a.checker->collides(qt.data()), "the state at the last valid fraction " << last << " collides");
+    BOOST_TEST(!a.checker->collides(qt.data()),
+               "the state at the last valid fraction " << last << " collides");
   }
   BOOST_TEST(accepted > 0);
   BOOST_TEST(colliding > 0);
-  BOOST_TEST_MESSAGE("dense sampling, scale " << scale << ": " << motions << " motions, " << accepted
-                                              << " accepted, " << colliding << " colliding rejected, "
-                                              << conservative << " rejected though every sample is free; "
-                                              << cmc.subMotions() << " sub-motions, " << cmc.unitTests()
-                                              << " swept tests");
+  BOOST_TEST_MESSAGE("dense sampling, scale "
+                     << scale << ": " << motions << " motions, " << accepted << " accepted, "
+                     << colliding << " colliding rejected, " << conservative
+                     << " rejected though every sample is free; " << cmc.subMotions()
+                     << " sub-motions, " << cmc.unitTests() << " swept tests");
 }
 
 }  // namespace
@@ -186,11 +191,13 @@ BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_moving_link) {
 
 BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling) {
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
-  const Arm arm = loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", dir + "/scenes/shelf.yaml");
+  const Arm arm =
+      loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", dir + "/scenes/shelf.yaml");
   checkAgainstDenseSampling(arm, 7, 0.15, 150);
   checkAgainstDenseSampling(arm, 8, 1.0, 60);
   const std::string panda = std::string(DSS_SHARED_DIR) + "/robots/panda";
-  const std::string scene = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda/bookshelf_small/scene0001.yaml";
+  const std::string scene =
+      std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda/bookshelf_small/scene0001.yaml";
   if (!std::filesystem::exists(scene)) {
     BOOST_TEST_MESSAGE("skipping the Panda: " << scene << " absent");
     return;
@@ -203,8 +210,10 @@ BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling) {
 // whole motion are refused at construction; the ends of the range are accepted.
 BOOST_AUTO_TEST_CASE(min_fraction_outside_zero_one_is_refused) {
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
-  const Arm arm = loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", dir + "/scenes/shelf.yaml");
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const Arm arm =
+      loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", dir + "/scenes/shelf.yaml");
+  const double nan = std::numeric_limits<double>::quiet_NaN(),
+               inf = std::numeric_limits<double>::infinity();
   for (double bad : {0.0, -0.0, -1e-3, -1.0, nan, -nan, std::nextafter(1.0, 2.0), 2.0, inf, -inf})
     BOOST_CHECK_THROW(dss::ContinuousMotionChecker(arm.checker, bad), std::invalid_argument);
   for (double good : {1.0, 0.5, 1.0 / 1024.0, std::numeric_limits<double>::denorm_min()})

@@ -2,10 +2,9 @@
 // shape (points of its surface tested with exact DSS), and the inner-ball stage of the sweep
 // never changes a checker's answer -- it only proves collisions earlier (random Panda states of
 // MotionBenchMaker scenes, and our own arm in its shelf scene).
+#include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <random>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/sweep.h"
@@ -42,8 +41,10 @@ std::size_t checkBallsInside(const dss::CollisionModel& m) {
         const Eigen::Vector3d p = c + r * randomUnit(rng);
         const dss::AnyShape point = dss::ConvexHull({p});
         const bool inside = dss::intersect(point, Eigen::Isometry3d::Identity(), e.source->shape,
-                                           Eigen::Isometry3d::Identity()).intersect;
-        BOOST_TEST_REQUIRE(inside, e.source->description << " ball " << k << " point " << p.transpose());
+                                           Eigen::Isometry3d::Identity())
+                                .intersect;
+        BOOST_TEST_REQUIRE(inside,
+                           e.source->description << " ball " << k << " point " << p.transpose());
       }
     }
   }
@@ -64,11 +65,15 @@ std::size_t compareAnswers(const dss::CollisionModel& m, std::size_t n, std::uin
     int narrow = 0;
     auto scene = [&](int e, const Eigen::Isometry3d& X_WS, int o) {
       ++narrow;
-      return dss::intersect(m.elements()[e].source->shape, X_WS, obstacles[o].shape, obstacles[o].X_WO).intersect;
+      return dss::intersect(m.elements()[e].source->shape, X_WS, obstacles[o].shape,
+                            obstacles[o].X_WO)
+          .intersect;
     };
     auto self = [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
       ++narrow;
-      return dss::intersect(m.elements()[a].source->shape, X_WA, m.elements()[b].source->shape, X_WB).intersect;
+      return dss::intersect(m.elements()[a].source->shape, X_WA, m.elements()[b].source->shape,
+                            X_WB)
+          .intersect;
     };
     dss::SweepOptions opt;
     opt.obb_stage = true;
@@ -81,7 +86,8 @@ std::size_t compareAnswers(const dss::CollisionModel& m, std::size_t n, std::uin
     colliding += with;
     if (with && narrow == 0) ++decided;
   }
-  BOOST_TEST_MESSAGE(colliding << " of " << n << " states colliding, " << decided << " proved by inner balls");
+  BOOST_TEST_MESSAGE(colliding << " of " << n << " states colliding, " << decided
+                               << " proved by inner balls");
   return decided;
 }
 
@@ -92,8 +98,8 @@ BOOST_AUTO_TEST_SUITE(inner_balls)
 BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_our_arm) {
   const auto r = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
   const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
-  const dss::ModelSetup p =
-      dss::setupModel(r, dss::loadScene(kArm + "/scenes/shelf.yaml"), req.group_name, req.startState());
+  const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(kArm + "/scenes/shelf.yaml"),
+                                            req.group_name, req.startState());
   BOOST_TEST(checkBallsInside(*p.model) > 0u);
   compareAnswers(*p.model, 3000, 21);
 }
@@ -109,8 +115,8 @@ BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_mbm_panda) {
   for (const char* folder : {"box", "bookshelf_small", "table_pick"}) {
     const std::string dir = kMbm + "/" + folder;
     const auto req = dss::loadPlanRequestYaml(dir + "/request0001.yaml");
-    const dss::ModelSetup p =
-        dss::setupModel(r, dss::loadScene(dir + "/scene0001.yaml"), req.group_name, req.startState());
+    const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(dir + "/scene0001.yaml"),
+                                              req.group_name, req.startState());
     if (first) BOOST_TEST(checkBallsInside(*p.model) >= 9u);  // at least one per link hull
     first = false;
     decided += compareAnswers(*p.model, 3000, 23);

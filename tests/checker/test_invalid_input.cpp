@@ -4,14 +4,13 @@
 // outside them). Every state checker answers StateVerdict::kInvalidInput for any other state --
 // never "free", never a collision count -- and counts it in counters().invalid_input; the DSS
 // clearance of such a state is 0, and a motion from or to one is not clear.
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/continuous_motion.h"
@@ -37,11 +36,14 @@ struct HeldOutside {
     held[0] = joint(0).limits.upper + 0.5;
     const dss::Scene scene = dss::loadScene(dss_test::kArmDir + "/scenes/shelf.yaml");
     const dss::Srdf* srdf = robot.srdf ? &*robot.srdf : nullptr;
-    model = std::make_shared<const dss::CollisionModel>(robot.model, srdf, scene, std::vector<int>{1, 2, 3, 4, 5, 6},
-                                                        held);
-    all_group = std::make_shared<const dss::CollisionModel>(robot.model, srdf, scene, std::vector<int>{}, held);
+    model = std::make_shared<const dss::CollisionModel>(robot.model, srdf, scene,
+                                                        std::vector<int>{1, 2, 3, 4, 5, 6}, held);
+    all_group = std::make_shared<const dss::CollisionModel>(robot.model, srdf, scene,
+                                                            std::vector<int>{}, held);
   }
-  const dss::RobotJoint& joint(int active) const { return robot.model->joints[robot.model->active_joints[active]]; }
+  const dss::RobotJoint& joint(int active) const {
+    return robot.model->joints[robot.model->active_joints[active]];
+  }
 };
 
 // Group joint values that are not valid input, each with what it is.
@@ -87,8 +89,9 @@ BOOST_AUTO_TEST_CASE(within_bounds_takes_limits_and_held_values) {
     v[0] = in;
     BOOST_TEST(m.withinBounds(v.data()), "held joint at " << in);
   }
-  for (double out : {std::nextafter(f.held[0], kInf), std::nextafter(f.held[0], 0.0), j0.limits.upper + 0.25,
-                     std::nextafter(j0.limits.upper, kInf), j0.limits.lower - 1.0, kNan, kInf, -kInf}) {
+  for (double out :
+       {std::nextafter(f.held[0], kInf), std::nextafter(f.held[0], 0.0), j0.limits.upper + 0.25,
+        std::nextafter(j0.limits.upper, kInf), j0.limits.lower - 1.0, kNan, kInf, -kInf}) {
     v[0] = out;
     BOOST_TEST(!m.withinBounds(v.data()), "held joint at " << out);
   }
@@ -102,7 +105,8 @@ BOOST_AUTO_TEST_CASE(within_bounds_takes_limits_and_held_values) {
 // A continuous joint takes any finite value (the value is an angle), but not NaN or Inf.
 BOOST_AUTO_TEST_CASE(within_bounds_takes_any_finite_angle_of_a_continuous_joint) {
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_mobile_base";
-  const dss::LoadedRobot r = dss::loadRobot(dir + "/dss_mobile_base.urdf", dir + "/dss_mobile_base.srdf");
+  const dss::LoadedRobot r =
+      dss::loadRobot(dir + "/dss_mobile_base.urdf", dir + "/dss_mobile_base.srdf");
   const int theta = r.model->joints[r.model->jointIndexOrThrow("base_theta")].active_index;
   BOOST_REQUIRE(theta >= 0);
   BOOST_REQUIRE(r.model->joints[r.model->active_joints[theta]].type == dss::JointType::kContinuous);
@@ -136,8 +140,8 @@ BOOST_AUTO_TEST_CASE(checkers_refuse_invalid_input_and_count_it) {
   }
   BOOST_REQUIRE(!free_q.empty());
   BOOST_REQUIRE(!colliding_q.empty());
-  std::vector<std::pair<std::vector<double>, std::string>> valid = {{free_q, "free state"},
-                                                                     {colliding_q, "colliding state"}};
+  std::vector<std::pair<std::vector<double>, std::string>> valid = {
+      {free_q, "free state"}, {colliding_q, "colliding state"}};
   for (auto [q, what] : std::vector<std::pair<std::vector<double>, std::string>>(valid)) {
     q[0] = 0.3;
     valid.emplace_back(q, what + " with the held joint within its limits");
@@ -173,7 +177,8 @@ BOOST_AUTO_TEST_CASE(checkers_refuse_invalid_input_and_count_it) {
       }
       const dss::CheckerCounters after_valid = checker->counters();
       for (const auto& [q, what] : invalid) {
-        BOOST_TEST((checker->check(q.data()) == dss::StateVerdict::kInvalidInput), who << ": " << what);
+        BOOST_TEST((checker->check(q.data()) == dss::StateVerdict::kInvalidInput),
+                   who << ": " << what);
         BOOST_TEST(checker->collides(q.data()), who << ": " << what);
       }
       // Each invalid state checked twice (check and collides): counted as checked and as
@@ -202,7 +207,8 @@ BOOST_AUTO_TEST_CASE(invalid_states_have_no_clearance_and_no_clear_motion) {
   std::vector<double> free_q;
   for (int k = 0; k < 10000 && free_q.empty(); ++k) {
     std::vector<double> q = dss_test::randomGroupState(*f.model, rng);
-    if (checker->check(q.data()) == dss::StateVerdict::kFree && checker->clearance(q.data()) > 0.0) free_q = q;
+    if (checker->check(q.data()) == dss::StateVerdict::kFree && checker->clearance(q.data()) > 0.0)
+      free_q = q;
   }
   BOOST_REQUIRE(!free_q.empty());
   // A motion that stays where it is, at a free state, is clear.

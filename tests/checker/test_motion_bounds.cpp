@@ -8,6 +8,7 @@
 // robot with prismatic joints (one a mimic) held outside their limits; prismaticTravel covers
 // every value within the limits and the held value.
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -15,8 +16,6 @@
 #include <type_traits>
 #include <variant>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/motion_bounds.h"
 #include "dss/robot/kinematics.h"
@@ -89,8 +88,8 @@ struct Totals {
 // geometry point traces in stop's frame is no longer than the bound, the link turns by at most
 // `turn` in that frame, every point stays within the reach at stop, the link's origin within
 // originOffsetBound.
-Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group, const std::vector<double>& held,
-                   std::uint64_t seed, int motions, int steps) {
+Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group,
+                   const std::vector<double>& held, std::uint64_t seed, int motions, int steps) {
   const dss::Kinematics kin(robot, /*all_links=*/true);
   std::mt19937_64 rng(seed);
   Totals totals;
@@ -151,7 +150,8 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group, 
       // The revolute angle of the chain: the sum of its revolute joints' |dq| (mimics scaled).
       double turn = 0.0;
       for (const dss::ChainTerm& term : c.terms)
-        if (!term.prismatic && term.active >= 0) turn += std::abs(term.multiplier * (q1[term.active] - q0[term.active]));
+        if (!term.prismatic && term.active >= 0)
+          turn += std::abs(term.multiplier * (q1[term.active] - q0[term.active]));
       BOOST_TEST(std::abs(b.turn - turn) <= 1e-12 * (1.0 + turn));
       const double length_tol = 1e-12 * (1.0 + b.length), turn_tol = 1e-9;
       auto inStop = [&](int s) {
@@ -162,8 +162,8 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group, 
       Eigen::Isometry3d X0 = inStop(0);
       for (std::size_t i = 0; i < c.p_L.size(); ++i) prev[i] = X0 * c.p_L[i];
       const std::string what = robot.links[c.link].name + " relative to " +
-                               (c.stop < 0 ? std::string("the world") : robot.links[c.stop].name) + ", motion " +
-                               std::to_string(k) + ": ";
+                               (c.stop < 0 ? std::string("the world") : robot.links[c.stop].name) +
+                               ", motion " + std::to_string(k) + ": ";
       auto fail = [&](const std::string& msg) {
         if (totals.violations++ == 0) totals.first_violation = what + msg;
       };
@@ -171,28 +171,32 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group, 
       for (int s = 0; s <= steps; ++s) {
         const Eigen::Isometry3d X_SL = inStop(s);
         if (!(X_SL.translation().norm() <= c.offset_bound * (1.0 + 1e-12) + 1e-12))
-          fail("origin at " + std::to_string(X_SL.translation().norm()) + " beyond originOffsetBound " +
-               std::to_string(c.offset_bound));
+          fail("origin at " + std::to_string(X_SL.translation().norm()) +
+               " beyond originOffsetBound " + std::to_string(c.offset_bound));
         const double angle = rotationAngle(X0.linear().transpose() * X_SL.linear());
         if (!(angle <= b.turn + turn_tol))
-          fail("turned by " + std::to_string(angle) + " beyond the bound " + std::to_string(b.turn));
+          fail("turned by " + std::to_string(angle) + " beyond the bound " +
+               std::to_string(b.turn));
         for (std::size_t i = 0; i < c.p_L.size(); ++i) {
           const Eigen::Vector3d p = X_SL * c.p_L[i];
           if (!(p.norm() <= c.reach_at_stop * (1.0 + 1e-12) + 1e-12))
-            fail("a point at " + std::to_string(p.norm()) + " beyond the reach " + std::to_string(c.reach_at_stop));
+            fail("a point at " + std::to_string(p.norm()) + " beyond the reach " +
+                 std::to_string(c.reach_at_stop));
           path[i] += (p - prev[i]).norm();
           prev[i] = p;
         }
       }
       for (std::size_t i = 0; i < c.p_L.size(); ++i) {
         if (!(path[i] <= b.length + length_tol))
-          fail("a point's path " + std::to_string(path[i]) + " beyond the bound " + std::to_string(b.length));
+          fail("a point's path " + std::to_string(path[i]) + " beyond the bound " +
+               std::to_string(b.length));
         if (b.length > 0) totals.tightest = std::max(totals.tightest, path[i] / b.length);
         ++totals.point_paths;
       }
     }
   }
-  BOOST_TEST(totals.violations == 0u, totals.violations << " violations, the first: " << totals.first_violation);
+  BOOST_TEST(totals.violations == 0u,
+             totals.violations << " violations, the first: " << totals.first_violation);
   return totals;
 }
 
@@ -210,7 +214,8 @@ BOOST_AUTO_TEST_CASE(no_point_of_our_arm_outruns_its_motion_bound) {
   const dss::LoadedRobot r = dss_test::loadArm();
   const dss::RobotModel& robot = *r.model;
   const Totals world = checkBounds(robot, allActive(robot), robot.defaultState(), 3, 60, 256);
-  BOOST_TEST_MESSAGE("dss_arm7: " << world.point_paths << " point paths, largest path / bound " << world.tightest);
+  BOOST_TEST_MESSAGE("dss_arm7: " << world.point_paths << " point paths, largest path / bound "
+                                  << world.tightest);
   BOOST_TEST(world.point_paths > 100000u);
   // The bound is not vacuous: on single-joint motions a point near the reach comes close.
   BOOST_TEST(world.tightest > 0.5);
@@ -266,15 +271,18 @@ BOOST_AUTO_TEST_CASE(prismatic_travel_covers_limits_and_held_values) {
         const dss::RobotJoint& leader = robot.joints[robot.active_joints[lead]];
         std::vector<double> values = {leader.limits.lower, leader.limits.upper, held[lead]};
         for (int k = 0; k < 200; ++k)
-          values.push_back(std::uniform_real_distribution<double>(leader.limits.lower, leader.limits.upper)(rng));
+          values.push_back(std::uniform_real_distribution<double>(leader.limits.lower,
+                                                                  leader.limits.upper)(rng));
         auto displacement = [&](double v) {
           return j.active_index >= 0 ? v : j.mimic_multiplier * v + j.mimic_offset;
         };
         for (double v : values)
-          BOOST_TEST(std::abs(displacement(v)) <= travel, j.name << " at leader value " << v << ", travel " << travel);
+          BOOST_TEST(std::abs(displacement(v)) <= travel,
+                     j.name << " at leader value " << v << ", travel " << travel);
         // An active joint's travel is exactly the largest of those.
         if (j.active_index >= 0)
-          BOOST_TEST(travel == std::max({std::abs(j.limits.lower), std::abs(j.limits.upper), std::abs(held[lead])}),
+          BOOST_TEST(travel == std::max({std::abs(j.limits.lower), std::abs(j.limits.upper),
+                                         std::abs(held[lead])}),
                      j.name);
       }
     }

@@ -1,9 +1,8 @@
 // The oriented-box stage of the sweep (obb.h) must never call a touching pair apart: on random
 // box pairs (many near contact), every "apart" from obbApart is confirmed disjoint by exact DSS,
 // and it finds nearly every disjoint pair.
-#include <random>
-
 #include <boost/test/unit_test.hpp>
+#include <random>
 
 #include "dss/checker/obb.h"
 #include "dss/core/any_shape_query.h"
@@ -25,7 +24,8 @@ BOOST_AUTO_TEST_CASE(obb_apart_is_never_wrong) {
     Xa.translation() = ca;
     Xb.linear() = Rb;
     Xb.translation() = cb;
-    const dss::Result r = dss::intersect(dss::AnyShape(dss::Box{ha}), Xa, dss::AnyShape(dss::Box{hb}), Xb, {}, pad);
+    const dss::Result r =
+        dss::intersect(dss::AnyShape(dss::Box{ha}), Xa, dss::AnyShape(dss::Box{hb}), Xb, {}, pad);
     dss_disjoint += !r.intersect;
     if (dss::obbApart(Ra, ca, ha, Rb, cb, hb, pad)) {
       ++apart;

@@ -3,12 +3,11 @@
 // its own filters would pass: the sweep calls the narrow phase for exactly the element pairs,
 // in the same order, that the per-pair filters alone (slot spheres, element spheres, oriented
 // boxes) let through, with the folded placement (pose links) and with the full kinematics.
+#include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <random>
 #include <utility>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/obb.h"
@@ -46,8 +45,8 @@ PairList bruteForce(const dss::CollisionModel& m, const Eigen::Isometry3d* X, do
           if ((X[a.link] * a.center_L - X[b.link] * b.center_L).squaredNorm() > rr * rr) continue;
         }
         const Eigen::Isometry3d XA = X[a.link] * a.source->X_LS, XB = X[b.link] * b.source->X_LS;
-        if (dss::obbApart(XA.linear(), XA * a.box_center_S, a.box_half, XB.linear(), XB * b.box_center_S,
-                                  b.box_half, pad))
+        if (dss::obbApart(XA.linear(), XA * a.box_center_S, a.box_half, XB.linear(),
+                          XB * b.box_center_S, b.box_half, pad))
           continue;
         out.emplace_back(ea, eb);
       }
@@ -79,27 +78,30 @@ void checkModel(const dss::CollisionModel& m, std::uint64_t seed) {
       PairList unfolded, folded;
       dss::SweepOptions opt;
       opt.self_padding = pad;
-      dss::sweep<dss::SweepPoses::kOwnLinks>(m, X.data(), no_skip.data(), opt, none,
-                                             [&](int a, const Eigen::Isometry3d&, int b, const Eigen::Isometry3d&) {
-                                               unfolded.emplace_back(a, b);
-                                               return false;
-                                             });
-      dss::sweep<dss::SweepPoses::kPoseLinks>(m, Xs.data(), no_skip.data(), opt, none,
-                                              [&](int a, const Eigen::Isometry3d&, int b, const Eigen::Isometry3d&) {
-                                                folded.emplace_back(a, b);
-                                                return false;
-                                              });
+      dss::sweep<dss::SweepPoses::kOwnLinks>(
+          m, X.data(), no_skip.data(), opt, none,
+          [&](int a, const Eigen::Isometry3d&, int b, const Eigen::Isometry3d&) {
+            unfolded.emplace_back(a, b);
+            return false;
+          });
+      dss::sweep<dss::SweepPoses::kPoseLinks>(
+          m, Xs.data(), no_skip.data(), opt, none,
+          [&](int a, const Eigen::Isometry3d&, int b, const Eigen::Isometry3d&) {
+            folded.emplace_back(a, b);
+            return false;
+          });
       const PairList expected = bruteForce(m, X.data(), pad);
-      BOOST_TEST_REQUIRE((unfolded == expected), "state " << k << " padding " << pad << ": " << unfolded.size()
-                                                          << " narrow-phase pairs, expected " << expected.size());
+      BOOST_TEST_REQUIRE((unfolded == expected),
+                         "state " << k << " padding " << pad << ": " << unfolded.size()
+                                  << " narrow-phase pairs, expected " << expected.size());
       BOOST_TEST_REQUIRE((folded == expected), "state " << k << " padding " << pad << " (folded)");
       pairs += expected.size();
       states_with_pairs += !expected.empty();
     }
   }
-  BOOST_TEST_MESSAGE(m.pairsBehindBlockBalls() << " of " << m.selfPairs().size() << " self pairs behind block balls; "
-                                                 << pairs << " narrow-phase pairs in " << states_with_pairs
-                                                 << " states");
+  BOOST_TEST_MESSAGE(m.pairsBehindBlockBalls()
+                     << " of " << m.selfPairs().size() << " self pairs behind block balls; "
+                     << pairs << " narrow-phase pairs in " << states_with_pairs << " states");
   BOOST_TEST(states_with_pairs > 100u);  // the comparison sees pairs
 }
 
@@ -108,7 +110,8 @@ void checkModel(const dss::CollisionModel& m, std::uint64_t seed) {
 BOOST_AUTO_TEST_SUITE(pair_blocks)
 
 BOOST_AUTO_TEST_CASE(blocks_skip_only_pairs_their_own_filters_skip_panda) {
-  if (!fs::exists(kPanda + "/panda.urdf") || !fs::exists(kMbm + "/bookshelf_small/request0001.yaml")) {
+  if (!fs::exists(kPanda + "/panda.urdf") ||
+      !fs::exists(kMbm + "/bookshelf_small/request0001.yaml")) {
     BOOST_TEST_MESSAGE("skipped: shared Panda or MotionBenchMaker scenes not found");
     return;
   }
@@ -129,7 +132,8 @@ BOOST_AUTO_TEST_CASE(blocks_skip_only_pairs_their_own_filters_skip_dss_arm7) {
   dss::CollisionModelOptions options;
   options.pair_block_min_saving = 0.0;
   const dss::CollisionModel every(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene, {},
-                                  std::vector<double>(robot.model->numActiveJoints(), 0.0), options);
+                                  std::vector<double>(robot.model->numActiveJoints(), 0.0),
+                                  options);
   BOOST_TEST(every.pairsBehindBlockBalls() >= 3u, every.summary());
   checkModel(every, 4);
   const dss::CollisionModel paying(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene, {},

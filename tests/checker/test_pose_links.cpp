@@ -3,11 +3,10 @@
 // constant transform, so the sweep needs the poses of fewer links. The kinematics restricted to
 // some links gives those links the same poses as the full one; the folded sweep answers as the
 // unfolded one; a state whose held joint is elsewhere takes the full path.
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/dss_checker.h"
@@ -28,8 +27,8 @@ int linkIndex(const dss::RobotModel& m, const std::string& name) {
 }
 
 // The arm with joint7 held outside the group at `held7`: link7 and everything on it ride on link6.
-std::shared_ptr<dss::CollisionModel> sixJointModel(const dss::LoadedRobot& r, const dss::Scene& scene,
-                                                   double held7) {
+std::shared_ptr<dss::CollisionModel> sixJointModel(const dss::LoadedRobot& r,
+                                                   const dss::Scene& scene, double held7) {
   std::vector<double> held(r.model->numActiveJoints(), 0.0);
   held[6] = held7;
   return std::make_shared<dss::CollisionModel>(r.model, r.srdf ? &*r.srdf : nullptr, scene,
@@ -49,7 +48,8 @@ std::vector<double> randomState(const dss::RobotModel& m, std::mt19937_64& rng) 
 // on). With q (its held joints at held()): the tables read for q, then the folded sweep from
 // the pose links in X. Without: no table, the unfolded sweep from every link's own pose in X.
 template <class F>
-bool sweepCollides(const dss::CollisionModel& m, const double* q, const Eigen::Isometry3d* X, F&& count) {
+bool sweepCollides(const dss::CollisionModel& m, const double* q, const Eigen::Isometry3d* X,
+                   F&& count) {
   const auto& el = m.elements();
   const auto& ob = m.scene().obstacles;
   auto scene = [&](int e, const Eigen::Isometry3d& X_WS, int o) {
@@ -99,7 +99,8 @@ BOOST_AUTO_TEST_CASE(kinematics_restricted_to_some_links_gives_them_the_same_pos
       if (l >= 0) BOOST_TEST(std::isnan(B[l].matrix()(0, 0)), name);
     }
   }
-  BOOST_CHECK_THROW(dss::Kinematics(m, std::vector<char>(m.links.size() + 1, 1)), std::invalid_argument);
+  BOOST_CHECK_THROW(dss::Kinematics(m, std::vector<char>(m.links.size() + 1, 1)),
+                    std::invalid_argument);
 }
 
 BOOST_AUTO_TEST_CASE(folded_sweep_answers_as_the_unfolded_one) {
@@ -129,18 +130,21 @@ BOOST_AUTO_TEST_CASE(folded_sweep_answers_as_the_unfolded_one) {
     m.kinematics().computeLinkPoses(q.data(), Xf.data());
     // Folded: from the pose links (q given, held joint at its value). Every shape pose the
     // narrow phase sees is the full kinematics' one up to rounding.
-    const bool folded = sweepCollides(m, q.data(), Xs.data(), [&](int e, const Eigen::Isometry3d& X_WS) {
-      const auto& el = m.elements()[e];
-      const Eigen::Isometry3d ref = Xf[el.link] * el.source->X_LS;
-      BOOST_TEST((X_WS.matrix() - ref.matrix()).cwiseAbs().maxCoeff() < 1e-12);
-      ++placed;
-    });
+    const bool folded =
+        sweepCollides(m, q.data(), Xs.data(), [&](int e, const Eigen::Isometry3d& X_WS) {
+          const auto& el = m.elements()[e];
+          const Eigen::Isometry3d ref = Xf[el.link] * el.source->X_LS;
+          BOOST_TEST((X_WS.matrix() - ref.matrix()).cwiseAbs().maxCoeff() < 1e-12);
+          ++placed;
+        });
     // Unfolded: no q, every link from the full kinematics.
-    const bool unfolded = sweepCollides(m, nullptr, Xf.data(), [](int, const Eigen::Isometry3d&) {});
+    const bool unfolded =
+        sweepCollides(m, nullptr, Xf.data(), [](int, const Eigen::Isometry3d&) {});
     BOOST_TEST(folded == unfolded, "state " << k);
     colliding += unfolded;
   }
-  BOOST_TEST_MESSAGE("colliding " << colliding << " of " << n << ", narrow-phase poses compared " << placed);
+  BOOST_TEST_MESSAGE("colliding " << colliding << " of " << n << ", narrow-phase poses compared "
+                                  << placed);
   BOOST_TEST(colliding > n / 20u);
   BOOST_TEST(colliding < n - n / 20u);
   BOOST_TEST(placed > 200u);
@@ -176,7 +180,8 @@ BOOST_AUTO_TEST_CASE(held_joint_elsewhere_takes_the_full_path) {
     qh[6] = m.held()[6];
     differs_from_held += !checker.collides(qh.data()) != valid;
   }
-  BOOST_TEST_MESSAGE("invalid " << invalid << ", answer differs from the held value's " << differs_from_held);
+  BOOST_TEST_MESSAGE("invalid " << invalid << ", answer differs from the held value's "
+                                << differs_from_held);
   BOOST_TEST(wrong == 0u);
   BOOST_TEST(differs_from_held >= 5u);
   BOOST_TEST(invalid > n / 20u);

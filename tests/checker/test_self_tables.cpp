@@ -3,13 +3,13 @@
 // edges (and one ulp beyond) and centres of every decided cell against exact DSS and FCL
 // (distance, collide), on random states, and by comparing whole checkers with and without
 // tables; plus the lookup's handling of wrapping, NaN and out-of-range values.
+#include <fcl/fcl.h>
+
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <random>
-
-#include <boost/test/unit_test.hpp>
-#include <fcl/fcl.h>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/dss_checker.h"
@@ -28,8 +28,8 @@ const std::string kMbm = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda";
 
 // Every link pair of the model that has a table is free at q (exact DSS and FCL distance > 0
 // on the hull geometry, at the given padding). Returns the number of pairs checked.
-std::size_t checkCertified(const dss::CollisionModel& m, const std::vector<double>& q, double padding,
-                           const dss::FclChecker& fcl) {
+std::size_t checkCertified(const dss::CollisionModel& m, const std::vector<double>& q,
+                           double padding, const dss::FclChecker& fcl) {
   std::vector<Eigen::Isometry3d> X(m.robot().links.size(), Eigen::Isometry3d::Identity());
   m.kinematics().computeLinkPoses(q.data(), X.data());
   std::size_t checked = 0;
@@ -46,13 +46,16 @@ std::size_t checkCertified(const dss::CollisionModel& m, const std::vector<doubl
           const auto& A = *m.elements()[a].source;
           const auto& B = *m.elements()[b].source;
           const Eigen::Isometry3d XA = X[sa.link] * A.X_LS, XB = X[sb.link] * B.X_LS;
-          dss_hit = dss_hit || dss::intersect(A.shape, XA, B.shape, XB, dss::Options{}, 0.0).intersect;
+          dss_hit =
+              dss_hit || dss::intersect(A.shape, XA, B.shape, XB, dss::Options{}, 0.0).intersect;
           fcl::CollisionRequestd req;
           fcl::CollisionResultd res;
-          fcl_hit = fcl_hit || fcl::collide(fcl.elementGeometry(a), XA, fcl.elementGeometry(b), XB, req, res) > 0;
+          fcl_hit = fcl_hit || fcl::collide(fcl.elementGeometry(a), XA, fcl.elementGeometry(b), XB,
+                                            req, res) > 0;
         }
-      BOOST_TEST(dss_hit, "certified colliding cell is free: " << m.robot().links[sa.link].name << " / "
-                                                                << m.robot().links[sb.link].name);
+      BOOST_TEST(dss_hit, "certified colliding cell is free: " << m.robot().links[sa.link].name
+                                                               << " / "
+                                                               << m.robot().links[sb.link].name);
       BOOST_TEST(fcl_hit, "FCL finds no collision in a certified colliding cell");
       ++checked;
       continue;
@@ -66,11 +69,13 @@ std::size_t checkCertified(const dss::CollisionModel& m, const std::vector<doubl
         const auto& B = *m.elements()[b].source;
         const Eigen::Isometry3d XA = X[sa.link] * A.X_LS, XB = X[sb.link] * B.X_LS;
         const dss::Result r = dss::intersect(A.shape, XA, B.shape, XB, dss::Options{}, padding);
-        BOOST_TEST(!r.intersect, "certified cell collides: " << m.robot().links[sa.link].name << " / "
+        BOOST_TEST(!r.intersect, "certified cell collides: " << m.robot().links[sa.link].name
+                                                             << " / "
                                                              << m.robot().links[sb.link].name);
         fcl::DistanceRequestd req;
         fcl::DistanceResultd res;
-        const double d = fcl::distance(fcl.elementGeometry(a), XA, fcl.elementGeometry(b), XB, req, res);
+        const double d =
+            fcl::distance(fcl.elementGeometry(a), XA, fcl.elementGeometry(b), XB, req, res);
         BOOST_TEST(d > padding, "FCL distance " << d << " in a certified cell");
         ++checked;
       }
@@ -139,8 +144,10 @@ BOOST_AUTO_TEST_CASE(lookup_wraps_and_refuses_nan_inf_and_out_of_range) {
   t.cells[0] = 4, t.cells[1] = 2;
   t.inv_width[0] = 4 / (2 * M_PI), t.inv_width[1] = 2.0;
   t.cell_state.assign(8, 0);
-  t.cell_state[1 * 2 + 1] = dss::SelfPairTable::kFree;  // angle in [-pi/2, 0), second value in [0.5, 1]
-  t.cell_state[2 * 2 + 0] = dss::SelfPairTable::kColliding;  // angle in [0, pi/2), second in [0, 0.5)
+  t.cell_state[1 * 2 + 1] =
+      dss::SelfPairTable::kFree;  // angle in [-pi/2, 0), second value in [0.5, 1]
+  t.cell_state[2 * 2 + 0] =
+      dss::SelfPairTable::kColliding;  // angle in [0, pi/2), second in [0, 0.5)
   double q[2] = {-0.3, 0.7};
   BOOST_TEST(t.cell(q) == dss::SelfPairTable::kFree);
   q[0] = -0.3 + 4 * M_PI;  // same angle, wrapped
@@ -162,8 +169,9 @@ BOOST_AUTO_TEST_CASE(lookup_wraps_and_refuses_nan_inf_and_out_of_range) {
   BOOST_TEST(t.cell(q) != dss::SelfPairTable::kFree);
   q[1] = 0.49;
   BOOST_TEST(t.cell(q) != dss::SelfPairTable::kFree);
-  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                     -std::numeric_limits<double>::infinity()}) {
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity()}) {
     q[0] = bad;
     q[1] = 0.7;
     BOOST_TEST(t.cell(q) == dss::SelfPairTable::kUnknown);
@@ -198,8 +206,8 @@ BOOST_AUTO_TEST_CASE(lookup_refuses_other_held_values) {
 BOOST_AUTO_TEST_CASE(own_arm_certified_cells_are_free) {
   const auto robot = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
   const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
-  const dss::ModelSetup p =
-      dss::setupModel(robot, dss::loadScene(kArm + "/scenes/shelf.yaml"), req.group_name, req.startState());
+  const dss::ModelSetup p = dss::setupModel(robot, dss::loadScene(kArm + "/scenes/shelf.yaml"),
+                                            req.group_name, req.startState());
   BOOST_TEST_MESSAGE("dss_arm7: " << p.model->summary());
   const std::size_t checked = checkAllCells(p.model, 0.0);
   BOOST_TEST_MESSAGE("dss_arm7: " << checked << " element pairs in certified cells checked");
@@ -216,15 +224,17 @@ BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer)
   BOOST_TEST(p.model->selfTables().size() >= 2u, p.model->summary());
   const std::size_t checked = checkAllCells(p.model, 0.0);
   BOOST_TEST(checked > 10000u);
-  BOOST_TEST_MESSAGE("panda: " << p.model->summary() << "; " << checked << " element pairs checked");
+  BOOST_TEST_MESSAGE("panda: " << p.model->summary() << "; " << checked
+                               << " element pairs checked");
 
   // Whole checkers: with and without tables, at zero and at a 1 cm self padding (where only
   // the colliding cells of the zero-padding tables apply), the same answers on seeded
   // random states.
   dss::CollisionModelOptions no_tables;
   no_tables.self_table_cells_1d = no_tables.self_table_cells_2d = 0;
-  auto bare = std::make_shared<dss::CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene,
-                                                    p.model->groupActive(), p.model->held(), no_tables);
+  auto bare =
+      std::make_shared<dss::CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene,
+                                            p.model->groupActive(), p.model->held(), no_tables);
   BOOST_TEST(bare->selfTables().size() == 0u);
   std::mt19937_64 rng(11);
   std::vector<double> q = p.model->held();
@@ -246,8 +256,9 @@ BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer)
     BOOST_TEST(differ == 0u);
     BOOST_TEST(invalid > 1000u);  // the test sees collisions
     BOOST_TEST_MESSAGE("self padding " << pad << ": " << invalid << " of 20000 invalid, " << differ
-                                       << " differ; pair tests with tables " << with.counters().pair_tests
-                                       << ", without " << without.counters().pair_tests);
+                                       << " differ; pair tests with tables "
+                                       << with.counters().pair_tests << ", without "
+                                       << without.counters().pair_tests);
     BOOST_TEST(with.counters().pair_tests < without.counters().pair_tests);
   }
 }
@@ -271,8 +282,9 @@ BOOST_AUTO_TEST_CASE(panda_arm_group_tables_with_held_fingers) {
   BOOST_TEST(checked > 10000u);
   dss::CollisionModelOptions no_tables;
   no_tables.self_table_cells_1d = no_tables.self_table_cells_2d = 0;
-  auto bare = std::make_shared<dss::CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene,
-                                                    p.model->groupActive(), p.model->held(), no_tables);
+  auto bare =
+      std::make_shared<dss::CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr, scene,
+                                            p.model->groupActive(), p.model->held(), no_tables);
   std::mt19937_64 rng(12);
   std::vector<double> q = p.model->held();
   const dss::DssChecker with(p.model), without(bare);

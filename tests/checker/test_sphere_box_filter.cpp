@@ -3,12 +3,11 @@
 // within a hair of the sphere), every length from 0 to 64 and every start, NaN centres (always
 // "test further"), and the padding lane of an odd count (never a hit).
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/checker/sphere_box_filter.h"
 
@@ -30,13 +29,15 @@ BOOST_AUTO_TEST_CASE(sphere_box_hits_match_the_scalar_distance) {
     Eigen::Vector3d c(u(rng), u(rng), u(rng));
     if (trial % 50 == 7) c.y() = std::numeric_limits<double>::quiet_NaN();
     // a radius at the exact distance of one box: that box is a hit (distance <= radius)
-    const double r2 = trial % 2 ? dss::detail::sqDistPointAabb(c, boxes[trial % total]) : 0.3 * (1 + u(rng));
+    const double r2 =
+        trial % 2 ? dss::detail::sqDistPointAabb(c, boxes[trial % total]) : 0.3 * (1 + u(rng));
     for (std::size_t begin = 0; begin < total; begin += 2) {
       const std::size_t n = std::min<std::size_t>(64, total - std::min(total, begin));
       const std::uint64_t hits = soa.hits(begin, n, c, r2);
       for (std::size_t i = 0; i < 64; ++i) {
         const bool want = i < n && !(dss::detail::sqDistPointAabb(c, boxes[begin + i]) > r2);
-        BOOST_TEST_REQUIRE(bool((hits >> i) & 1) == want, "trial " << trial << " begin " << begin << " box " << i);
+        BOOST_TEST_REQUIRE(bool((hits >> i) & 1) == want,
+                           "trial " << trial << " begin " << begin << " box " << i);
       }
     }
   }

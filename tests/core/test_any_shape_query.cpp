@@ -4,7 +4,6 @@
 // a posed sphere held by reference takes the plain modes' ball test; swept pairs answer as the
 // SweptHull template does.
 #include <boost/test/unit_test.hpp>
-
 #include <cmath>
 #include <random>
 
@@ -21,7 +20,8 @@ using namespace dss;
 namespace {
 ConvexHull cube(const Vec3d& c) {
   std::vector<Vec3d> v;
-  for (int k = 0; k < 8; ++k) v.push_back(c + Vec3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+  for (int k = 0; k < 8; ++k)
+    v.push_back(c + Vec3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
   return ConvexHull(v);
 }
 bool same(const Result& a, const Result& b) {
@@ -48,7 +48,8 @@ BOOST_AUTO_TEST_CASE(world_hulls_at_the_identity_pose_are_exact) {
     BOOST_TEST(intersect(a, I, b, I).intersect, "touching along " << dir.transpose());
     BOOST_TEST(!intersect(a, I, c, I).intersect, "one ulp apart along " << dir.transpose());
     BOOST_TEST(!intersect(c, I, a, I).intersect);
-    BOOST_TEST(same(intersect(a, I, c, I), intersect(std::get<ConvexHull>(a), std::get<ConvexHull>(c))));
+    BOOST_TEST(
+        same(intersect(a, I, c, I), intersect(std::get<ConvexHull>(a), std::get<ConvexHull>(c))));
     // A pose that is not exactly the identity: rotation by 2 pi (rounded), translation zero.
     Eigen::Isometry3d X = I;
     X.linear() = Eigen::AngleAxisd(2 * M_PI, Vec3d::UnitZ()).toRotationMatrix();
@@ -77,12 +78,14 @@ BOOST_AUTO_TEST_CASE(posed_references_to_balls_take_the_ball_test) {
     const ConvexHull hull(pts);
     const Sphere ball{0.05 + 0.4 * std::abs(u(rng))};
     Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity(), X_WB = Eigen::Isometry3d::Identity();
-    X_WA.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    X_WA.linear() =
+        Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
     X_WA.translation() = Vec3d(u(rng), u(rng), u(rng));
     X_WB.translation() = X_WA.translation() + 0.6 * Vec3d(u(rng), u(rng), u(rng));
     const Result via_model = intersect(AnyShape(hull), X_WA, AnyShape(ball), X_WB, dbl);
-    const Result direct = intersect(posed(hull, Mat3d(X_WA.linear()), Vec3d(X_WA.translation())),
-                                    posed(ball, Mat3d(X_WB.linear()), Vec3d(X_WB.translation())), dbl);
+    const Result direct =
+        intersect(posed(hull, Mat3d(X_WA.linear()), Vec3d(X_WA.translation())),
+                  posed(ball, Mat3d(X_WB.linear()), Vec3d(X_WB.translation())), dbl);
     BOOST_TEST(same(via_model, direct), "pair " << i);
     ++n;
     hits += direct.intersect;

@@ -2,7 +2,6 @@
 // exact separating-axis test (128-bit integers), near-contact pairs found by bisection on
 // the exact reference, analytic curved shapes, degenerate inputs, symmetry and determinism.
 #include <boost/test/unit_test.hpp>
-
 #include <random>
 
 #include "dss/core/any_shape_query.h"
@@ -61,7 +60,8 @@ BOOST_AUTO_TEST_CASE(random_tetrahedra_against_exact_sat) {
   Tally exact, dbl, flt, gjk, hybrid;
   for (int i = 0; i < 3000; ++i) {
     const auto a = randomTet(rng, 1 << 16, 0);
-    const auto b = randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 3 << 15)(rng));
+    const auto b =
+        randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 3 << 15)(rng));
     const bool truth = test::intersectExact(a, b);
     const double s = 1.0 / (1 << 16);
     const ConvexHull ha = toHull(a, s), hb = toHull(b, s);
@@ -134,7 +134,8 @@ BOOST_AUTO_TEST_CASE(scales_and_offsets) {
       Tally exact;
       for (int i = 0; i < 300; ++i) {
         const auto a = randomTet(rng, 1 << 12, 0);
-        const auto b = randomTet(rng, 1 << 12, std::uniform_int_distribution<long long>(0, 1 << 14)(rng));
+        const auto b =
+            randomTet(rng, 1 << 12, std::uniform_int_distribution<long long>(0, 1 << 14)(rng));
         const bool truth = test::intersectExact(a, b);
         const Vec3d off(offset, -offset, offset);
         // Power-of-two scales and offsets keep the inputs exact; others round them, so the
@@ -179,7 +180,8 @@ BOOST_AUTO_TEST_CASE(degenerate_point_sets) {
     exact.add(intersectHybrid(ha, hb), truth);
     ++n;
   }
-  BOOST_TEST_MESSAGE("degenerate: " << exact.pairs << " queries, " << exact.hits << " intersecting");
+  BOOST_TEST_MESSAGE("degenerate: " << exact.pairs << " queries, " << exact.hits
+                                    << " intersecting");
   BOOST_TEST(exact.hits > 0);
   BOOST_TEST(exact.wrong == 0);
 }
@@ -206,7 +208,8 @@ BOOST_AUTO_TEST_CASE(touching_boxes_exact) {
   const Mat3d I = Mat3d::Identity();
   auto cornerHull = [](const Vec3d& c) {
     std::vector<Vec3d> v;
-    for (int k = 0; k < 8; ++k) v.push_back(c + Vec3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+    for (int k = 0; k < 8; ++k)
+      v.push_back(c + Vec3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
     return ConvexHull(v);
   };
   for (const Vec3d dir : {Vec3d(1, 0, 0), Vec3d(1, 1, 0), Vec3d(1, 1, 1), Vec3d(-1, 1, -1)}) {
@@ -281,14 +284,18 @@ BOOST_AUTO_TEST_CASE(filtered_pass_takes_the_exact_decisions) {
     const Vec3d axis = Vec3d(u(rng), u(rng), u(rng)).normalized();
     const Mat3d R = Eigen::AngleAxisd(3 * u(rng), axis).toRotationMatrix();
     const Vec3d p(1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng));
-    check(posed(Box::fromSize({1, 0.5, 0.8}), R, p), posed(Box::fromSize({0.7, 0.9, 0.3}), I, Vec3d(0, 0, 0)));
-    check(posed(Cylinder::fromLength(0.3, 1.0), R, p), posed(Capsule::fromLength(0.2, 0.6), I, Vec3d(0, 0, 0)));
+    check(posed(Box::fromSize({1, 0.5, 0.8}), R, p),
+          posed(Box::fromSize({0.7, 0.9, 0.3}), I, Vec3d(0, 0, 0)));
+    check(posed(Cylinder::fromLength(0.3, 1.0), R, p),
+          posed(Capsule::fromLength(0.2, 0.6), I, Vec3d(0, 0, 0)));
     check(posed(Cone::fromLength(0.4, 0.9), R, p), posed(Sphere{0.5}, I, Vec3d(0, 0, 0)));
   }
   for (const Vec3d dir : {Vec3d(1, 0, 0), Vec3d(1, 1, 0), Vec3d(1, 1, 1)}) {  // exactly touching
-    check(posed(Box::fromSize({2, 2, 2}), I, Vec3d(0, 0, 0)), posed(Box::fromSize({2, 2, 2}), I, Vec3d(2 * dir)));
+    check(posed(Box::fromSize({2, 2, 2}), I, Vec3d(0, 0, 0)),
+          posed(Box::fromSize({2, 2, 2}), I, Vec3d(2 * dir)));
   }
-  BOOST_TEST_MESSAGE("filtered search: " << decided << " decided, " << unsure << " handed to the exact search");
+  BOOST_TEST_MESSAGE("filtered search: " << decided << " decided, " << unsure
+                                         << " handed to the exact search");
   BOOST_TEST(decided > 1000);
   BOOST_TEST(unsure > 0);
 }
@@ -297,7 +304,8 @@ BOOST_AUTO_TEST_CASE(symmetry_and_determinism) {
   std::mt19937_64 rng(5);
   for (int i = 0; i < 500; ++i) {
     const auto a = randomTet(rng, 1 << 16, 0);
-    const auto b = randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 1 << 18)(rng));
+    const auto b =
+        randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 1 << 18)(rng));
     const ConvexHull ha = toHull(a, 1e-5), hb = toHull(b, 1e-5);
     for (Mode m : kAllModes) {
       Options o;
@@ -318,16 +326,19 @@ BOOST_AUTO_TEST_CASE(separating_direction_is_a_certificate) {
   int checked = 0;
   for (int i = 0; i < 1000; ++i) {
     const auto a = randomTet(rng, 1 << 16, 0);
-    const auto b = randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 1 << 18)(rng));
+    const auto b =
+        randomTet(rng, 1 << 16, std::uniform_int_distribution<long long>(0, 1 << 18)(rng));
     const ConvexHull ha = toHull(a, 1.0), hb = toHull(b, 1.0);
     const Result r = intersect(ha, hb);
     if (r.intersect) continue;
     const Vec3d n = r.separating_direction;
     long double amax = -1e300L, bmin = 1e300L;
     for (const auto& p : ha.points())
-      amax = std::max(amax, (long double)n.x() * p.x() + (long double)n.y() * p.y() + (long double)n.z() * p.z());
+      amax = std::max(amax, (long double)n.x() * p.x() + (long double)n.y() * p.y() +
+                                (long double)n.z() * p.z());
     for (const auto& p : hb.points())
-      bmin = std::min(bmin, (long double)n.x() * p.x() + (long double)n.y() * p.y() + (long double)n.z() * p.z());
+      bmin = std::min(bmin, (long double)n.x() * p.x() + (long double)n.y() * p.y() +
+                                (long double)n.z() * p.z());
     BOOST_TEST(amax < bmin);
     ++checked;
   }
@@ -374,7 +385,8 @@ BOOST_AUTO_TEST_CASE(padding_is_distance_threshold) {
   int n = 0;
   for (int i = 0; i < 2000; ++i) {
     const Vec3d ca(u(rng), u(rng), u(rng)), cb(u(rng) * 3, u(rng) * 3, u(rng) * 3);
-    const double ra = 0.1 + std::abs(u(rng)), rb = 0.1 + std::abs(u(rng)), pad = 0.5 * std::abs(u(rng));
+    const double ra = 0.1 + std::abs(u(rng)), rb = 0.1 + std::abs(u(rng)),
+                 pad = 0.5 * std::abs(u(rng));
     const long double dist = std::sqrt((long double)(ca - cb).squaredNorm()) - ra - rb;
     if (std::abs(dist - pad) < 1e-9) continue;
     const auto a = padded(posed(Sphere{ra}, Mat3d::Identity().eval(), ca), pad);
@@ -395,7 +407,8 @@ BOOST_AUTO_TEST_CASE(swept_hull_of_translation) {
   const auto end = posed(Box::fromSize({1, 1, 1}), Mat3d::Identity().eval(), Vec3d(5, 0, 0));
   BOOST_TEST(!intersect(start, wall).intersect);
   BOOST_TEST(!intersect(end, wall).intersect);
-  const auto high_wall = posed(Box::fromSize({0.01, 4, 4}), Mat3d::Identity().eval(), Vec3d(0, 0, 3));
+  const auto high_wall =
+      posed(Box::fromSize({0.01, 4, 4}), Mat3d::Identity().eval(), Vec3d(0, 0, 3));
   BOOST_TEST(!intersect(swept, high_wall).intersect);
 }
 
@@ -403,10 +416,11 @@ BOOST_AUTO_TEST_CASE(swept_hull_of_translation) {
 // its polygon goes through a thin lune (poles nearly opposite). An earlier lune centre left
 // the lune there and DSS repeated the same step until the cap in double and exact mode.
 BOOST_AUTO_TEST_CASE(thin_lune_pair_terminates) {
-  const double v[24] = {0x1.c5c1ecp+0, -0x1.6a29a8p-5, 0x1.707a74p-1, 0x1.acb3f2p-1, -0x1.b08dbcp-1, -0x1.e87a58p-2,
-                        0x1.090644p+0, 0x1.92a31ep-2,  -0x1.d63644p-1, 0x1.a4fa42p-1, 0x1.5a7282p-1, 0x1.61344ap-1,
-                        0x1.8c2646p+0, -0x1.279b58p-3, -0x1.f99558p-1, 0x1.f21bfp-1, -0x1.76cbe6p-7, 0x1.8a099ap-1,
-                        0x1.41c05p+1,  0x1.be539ap-6,  0x1.b85f2ap-2, 0x1.41bb56p+1, 0x1.778daep-3, -0x1.8faa72p-2};
+  const double v[24] = {
+      0x1.c5c1ecp+0, -0x1.6a29a8p-5, 0x1.707a74p-1,  0x1.acb3f2p-1, -0x1.b08dbcp-1, -0x1.e87a58p-2,
+      0x1.090644p+0, 0x1.92a31ep-2,  -0x1.d63644p-1, 0x1.a4fa42p-1, 0x1.5a7282p-1,  0x1.61344ap-1,
+      0x1.8c2646p+0, -0x1.279b58p-3, -0x1.f99558p-1, 0x1.f21bfp-1,  -0x1.76cbe6p-7, 0x1.8a099ap-1,
+      0x1.41c05p+1,  0x1.be539ap-6,  0x1.b85f2ap-2,  0x1.41bb56p+1, 0x1.778daep-3,  -0x1.8faa72p-2};
   std::vector<Vec3d> a, b;
   for (int k = 0; k < 8; ++k) (k < 4 ? a : b).emplace_back(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
   const ConvexHull ha(a), hb(b);
@@ -414,7 +428,8 @@ BOOST_AUTO_TEST_CASE(thin_lune_pair_terminates) {
     Options o;
     o.mode = m;
     o.max_iterations = 20;
-    const Result r = m == Mode::kFloat ? intersect(ha.cast<float>(), hb.cast<float>(), o) : intersect(ha, hb, o);
+    const Result r =
+        m == Mode::kFloat ? intersect(ha.cast<float>(), hb.cast<float>(), o) : intersect(ha, hb, o);
     BOOST_TEST(r.intersect);  // the exact reference says they intersect
     BOOST_TEST((r.status == Status::kDecided));
     BOOST_TEST(r.iterations <= 10);

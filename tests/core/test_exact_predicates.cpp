@@ -2,7 +2,6 @@
 // and on constructed singular and nearly singular inputs with non-zero rounding parts.
 #include <boost/multiprecision/cpp_int.hpp>
 #include <boost/test/unit_test.hpp>
-
 #include <random>
 
 #include "dss/core/exact_predicates.h"
@@ -36,7 +35,8 @@ BOOST_AUTO_TEST_CASE(two_diff_is_exact) {
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 10000; ++i) {
-    const double a = u(rng) * std::ldexp(1.0, int(u(rng) * 60)), b = u(rng) * std::ldexp(1.0, int(u(rng) * 60));
+    const double a = u(rng) * std::ldexp(1.0, int(u(rng) * 60)),
+                 b = u(rng) * std::ldexp(1.0, int(u(rng) * 60));
     double h, l;
     exact::twoDiff(a, b, h, l);
     BOOST_TEST((rat(h) + rat(l) == rat(a) - rat(b)));
@@ -96,7 +96,8 @@ BOOST_AUTO_TEST_CASE(minor_dot_and_dot_diff) {
     const double n[3] = {u(rng), u(rng), u(rng)};
     double p[3] = {u(rng) * 1e8, u(rng), u(rng)}, q[3] = {p[0], p[1], p[2]};
     q[i % 3] = std::nextafter(p[i % 3], 1e300);
-    const cpp_rational ref = rat(n[0]) * (rat(p[0]) - rat(q[0])) + rat(n[1]) * (rat(p[1]) - rat(q[1])) +
+    const cpp_rational ref = rat(n[0]) * (rat(p[0]) - rat(q[0])) +
+                             rat(n[1]) * (rat(p[1]) - rat(q[1])) +
                              rat(n[2]) * (rat(p[2]) - rat(q[2]));
     BOOST_TEST(exact::dotDiffSign(n, p, q) == sgn(ref));
   }

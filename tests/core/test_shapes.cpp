@@ -2,7 +2,6 @@
 // conventions (cone apex at +z, cylinder and capsule along z), and curved shapes at gaps and
 // depths from 1e-3 down to 1e-12 of their size against a box face, for every shape type.
 #include <boost/test/unit_test.hpp>
-
 #include <random>
 
 #include "dss/core/any_shape_query.h"
@@ -22,10 +21,12 @@ LD supportValue(const AnyShape& s, const Vec3d& d) {
   const LD dx = d.x(), dy = d.y(), dz = d.z();
   const LD rxy = std::sqrt(dx * dx + dy * dy);
   if (auto* x = std::get_if<Sphere>(&s)) return x->radius;
-  if (auto* x = std::get_if<Box>(&s)) return std::abs(dx) * x->half.x() + std::abs(dy) * x->half.y() + std::abs(dz) * x->half.z();
+  if (auto* x = std::get_if<Box>(&s))
+    return std::abs(dx) * x->half.x() + std::abs(dy) * x->half.y() + std::abs(dz) * x->half.z();
   if (auto* x = std::get_if<Capsule>(&s)) return x->radius + std::abs(dz) * x->half_length;
   if (auto* x = std::get_if<Cylinder>(&s)) return x->radius * rxy + std::abs(dz) * x->half_length;
-  if (auto* x = std::get_if<Cone>(&s)) return std::max<LD>(dz * x->half_length, x->radius * rxy - dz * x->half_length);
+  if (auto* x = std::get_if<Cone>(&s))
+    return std::max<LD>(dz * x->half_length, x->radius * rxy - dz * x->half_length);
   if (auto* x = std::get_if<Ellipsoid>(&s)) {
     const LD a = x->radii.x() * dx, b = x->radii.y() * dy, c = x->radii.z() * dz;
     return std::sqrt(a * a + b * b + c * c);
@@ -34,8 +35,11 @@ LD supportValue(const AnyShape& s, const Vec3d& d) {
 }
 
 std::vector<AnyShape> primitives() {
-  return {Sphere{0.7}, Box::fromSize({0.4, 1.0, 0.6}), Capsule::fromLength(0.3, 0.8),
-          Cylinder::fromLength(0.4, 1.2), Cone::fromLength(0.5, 1.0),
+  return {Sphere{0.7},
+          Box::fromSize({0.4, 1.0, 0.6}),
+          Capsule::fromLength(0.3, 0.8),
+          Cylinder::fromLength(0.4, 1.2),
+          Cone::fromLength(0.5, 1.0),
           Ellipsoid{Vec3d(0.3, 0.6, 0.9)}};
 }
 
@@ -54,7 +58,8 @@ BOOST_AUTO_TEST_CASE(support_matches_analytic_values) {
   for (const auto& s : primitives()) {
     for (int i = 0; i < 2000; ++i) {
       const Vec3d d = Vec3d(g(rng), g(rng), g(rng)).normalized();
-      const Vec3d x = std::visit([&](const auto& sh) { return Vec3d(sh.support(d, Vec3d::Zero())); }, s);
+      const Vec3d x =
+          std::visit([&](const auto& sh) { return Vec3d(sh.support(d, Vec3d::Zero())); }, s);
       BOOST_TEST(std::abs(LD(d.dot(x)) - supportValue(s, d)) < 1e-14L, shapeTypeName(s));
     }
   }
@@ -62,7 +67,7 @@ BOOST_AUTO_TEST_CASE(support_matches_analytic_values) {
 
 BOOST_AUTO_TEST_CASE(urdf_conventions) {
   const Cone cone = Cone::fromLength(0.5, 2.0);
-  BOOST_TEST(cone.support(Vec3d(0, 0, 1), Vec3d::Zero()).z() == 1.0);   // apex at +length/2
+  BOOST_TEST(cone.support(Vec3d(0, 0, 1), Vec3d::Zero()).z() == 1.0);    // apex at +length/2
   BOOST_TEST(cone.support(Vec3d(0, 0, -1), Vec3d::Zero()).z() == -1.0);  // base at -length/2
   BOOST_TEST(cone.support(Vec3d(1, 0, -1), Vec3d::Zero()).x() == 0.5);
   const Cylinder cyl = Cylinder::fromLength(0.5, 2.0);
@@ -97,7 +102,8 @@ BOOST_AUTO_TEST_CASE(near_contact_every_shape_type) {
           const bool truth = side < 0;
           Options o;
           for (bool swap : {false, true}) {
-            const Result r = swap ? intersect(slab_any, X_slab, s, X, o) : intersect(s, X, slab_any, X_slab, o);
+            const Result r =
+                swap ? intersect(slab_any, X_slab, s, X, o) : intersect(s, X, slab_any, X_slab, o);
             wrong_exact += r.intersect != truth;
             ++n;
           }
@@ -124,7 +130,8 @@ BOOST_AUTO_TEST_CASE(sphere_pairs_against_distance) {
     const Vec3d ca(u(rng), u(rng), u(rng));
     const double ra = 0.2 + 0.5 * std::abs(u(rng)), rb = 0.2 + 0.5 * std::abs(u(rng));
     // Centre distances spread around contact: about half the pairs intersect.
-    const Vec3d cb = ca + Vec3d(u(rng), u(rng), u(rng)).normalized() * (ra + rb) * (1.0 + 0.5 * u(rng));
+    const Vec3d cb =
+        ca + Vec3d(u(rng), u(rng), u(rng)).normalized() * (ra + rb) * (1.0 + 0.5 * u(rng));
     const LD gap = std::sqrt(LD((ca - cb).squaredNorm())) - ra - rb;
     if (std::abs(gap) < 1e-12L) continue;
     const auto a = posed(Sphere{ra}, Mat3d::Identity().eval(), ca);
@@ -163,7 +170,8 @@ BOOST_AUTO_TEST_CASE(ball_test_of_the_plain_modes) {
     for (int kind = 0; kind < 2; ++kind) {
       auto check = [&](const auto& a) {
         const bool truth = intersect(a, ball, exact).intersect;
-        if (intersect(a, ball_small, exact).intersect != truth || intersect(a, ball_large, exact).intersect != truth)
+        if (intersect(a, ball_small, exact).intersect != truth ||
+            intersect(a, ball_large, exact).intersect != truth)
           return;  // near contact: the plain modes may differ
         ++n;
         hits += truth;
@@ -177,12 +185,16 @@ BOOST_AUTO_TEST_CASE(ball_test_of_the_plain_modes) {
         wrong_float += intersect(a, ball, flt).intersect != truth;
         wrong_float += intersect(ball, a, flt).intersect != truth;
       };
-      if (kind == 0) check(hull); else check(other);
+      if (kind == 0)
+        check(hull);
+      else
+        check(other);
     }
   }
   BOOST_TEST_MESSAGE("ball pairs: " << n << ", intersecting " << hits << ", double wrong " << wrong
-                                    << ", float wrong " << wrong_float << "; hull-ball pairs " << hull_pairs
-                                    << ", double with the exact mode's iterations " << same_iterations);
+                                    << ", float wrong " << wrong_float << "; hull-ball pairs "
+                                    << hull_pairs << ", double with the exact mode's iterations "
+                                    << same_iterations);
   BOOST_TEST(n > 7000);
   BOOST_TEST(hits > n * 0.3);
   BOOST_TEST(hits < n * 0.7);

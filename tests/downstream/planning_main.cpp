@@ -1,17 +1,16 @@
 // Uses the installed planning component: our 7-DOF arm in its shelf scene, checked and planned
 // with OMPL's RRTConnect, with the DSS checker and the continuous motion validator.
-#include <cstdio>
-#include <map>
-
+#include <dss/planning/planning_problem.h>
+#include <dss/scene/plan_request.h>
+#include <dss/scene/scene_loader.h>
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include <dss/planning/planning_problem.h>
-#include <dss/scene/plan_request.h>
-#include <dss/scene/scene_loader.h>
+#include <cstdio>
+#include <map>
 
 int main() {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -20,7 +19,8 @@ int main() {
   const dss::LoadedRobot robot = dss::loadRobot(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf");
   const dss::PlanRequest req = dss::loadPlanRequestYaml(dir + "/scenes/shelf_request.yaml");
   const std::map<std::string, double> start = req.startState();
-  dss::Problem p = dss::makeProblem(robot, dss::loadScene(dir + "/scenes/shelf.yaml"), req.group_name, start);
+  dss::Problem p =
+      dss::makeProblem(robot, dss::loadScene(dir + "/scenes/shelf.yaml"), req.group_name, start);
   auto checker = dss::makeValidityChecker(p, dss::CheckerConfig{});
   ompl::geometric::SimpleSetup ss(p.si);
   ss.setStateValidityChecker(checker);

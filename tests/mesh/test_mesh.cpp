@@ -1,13 +1,13 @@
 // Tests of dss/mesh/mesh.h: file formats, hulls of degenerate sets, tessellations.
-#include <boost/test/unit_test.hpp>
+#include <unistd.h>
 
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
-#include <unistd.h>
 
 #include "dss/mesh/mesh.h"
 
@@ -33,10 +33,14 @@ std::string write(const std::string& name, const std::string& text) {
 
 const char* kTetraStl =
     "solid t\n"
-    "facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 0 1 0\n vertex 1 0 0\n endloop\nendfacet\n"
-    "facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 0 0 1\n endloop\nendfacet\n"
-    "facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 0 1\n vertex 0 1 0\n endloop\nendfacet\n"
-    "facet normal 1 1 1\n outer loop\n vertex 1 0 0\n vertex 0 1 0\n vertex 0 0 1\n endloop\nendfacet\n"
+    "facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 0 1 0\n vertex 1 0 0\n "
+    "endloop\nendfacet\n"
+    "facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 0 0 1\n "
+    "endloop\nendfacet\n"
+    "facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 0 1\n vertex 0 1 0\n "
+    "endloop\nendfacet\n"
+    "facet normal 1 1 1\n outer loop\n vertex 1 0 0\n vertex 0 1 0\n vertex 0 0 1\n "
+    "endloop\nendfacet\n"
     "endsolid t\n";
 
 std::string binaryStl(const std::vector<std::array<Vector3d, 3>>& tris) {
@@ -143,7 +147,8 @@ BOOST_AUTO_TEST_CASE(errors_name_the_path) {
   }
   const std::string garbage = write("garbage.obj", "this is not a mesh\n");
   BOOST_CHECK_THROW(dss::mesh::loadMesh(garbage), std::runtime_error);
-  BOOST_CHECK_THROW(dss::mesh::loadMesh(write("t2.stl", kTetraStl), Vector3d(1, NAN, 1)), std::runtime_error);
+  BOOST_CHECK_THROW(dss::mesh::loadMesh(write("t2.stl", kTetraStl), Vector3d(1, NAN, 1)),
+                    std::runtime_error);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
@@ -165,7 +170,8 @@ BOOST_AUTO_TEST_CASE(cube_with_interior_points) {
 BOOST_AUTO_TEST_CASE(many_points_climb_and_agree_with_scan) {
   std::vector<Vector3d> pts;
   std::mt19937_64 rng(5);
-  for (int i = 0; i < 2000; ++i) pts.push_back(randomUnit(rng) * (1.0 + 0.1 * std::uniform_real_distribution<double>()(rng)));
+  for (int i = 0; i < 2000; ++i)
+    pts.push_back(randomUnit(rng) * (1.0 + 0.1 * std::uniform_real_distribution<double>()(rng)));
   const auto hull = dss::mesh::convexHull(pts, "ball");
   BOOST_TEST(hull.climbs());
   for (int i = 0; i < 2000; ++i) {
@@ -189,10 +195,12 @@ BOOST_AUTO_TEST_CASE(certified_cells_give_maximisers) {
   const auto hull = dss::mesh::convexHull(pts, "ellipsoid");
   BOOST_TEST_REQUIRE(hull.climbs());
   const std::size_t cells = 6 * dss::kSeedGrid * dss::kSeedGrid;
-  BOOST_TEST(hull.certifiedCells() > cells / 4, hull.certifiedCells() << " of " << cells << " certified");
+  BOOST_TEST(hull.certifiedCells() > cells / 4, hull.certifiedCells()
+                                                    << " of " << cells << " certified");
   BOOST_TEST(hull.certifiedCells() < cells);
   auto check = [&](const Vector3d& d) {
-    BOOST_TEST_REQUIRE(hull.points()[hull.supportIndex(d)].dot(d) == maxSupport(hull.points(), d), "d = " << d.transpose());
+    BOOST_TEST_REQUIRE(hull.points()[hull.supportIndex(d)].dot(d) == maxSupport(hull.points(), d),
+                       "d = " << d.transpose());
   };
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const int G = dss::kSeedGrid;
@@ -236,22 +244,24 @@ BOOST_AUTO_TEST_CASE(crowded_cells_climb) {
 BOOST_AUTO_TEST_CASE(degenerate_sets_fall_back_to_points) {
   dss::mesh::HullInfo info;
   // flat square with a duplicate and an interior point
-  std::vector<Vector3d> flat = {Vector3d(0, 0, 1), Vector3d(1, 0, 1), Vector3d(1, 1, 1), Vector3d(0, 1, 1),
-                                Vector3d(0, 0, 1), Vector3d(0.5, 0.5, 1)};
+  std::vector<Vector3d> flat = {Vector3d(0, 0, 1), Vector3d(1, 0, 1), Vector3d(1, 1, 1),
+                                Vector3d(0, 1, 1), Vector3d(0, 0, 1), Vector3d(0.5, 0.5, 1)};
   auto h = dss::mesh::convexHull(flat, "flat", &info);
   BOOST_TEST(!info.full_dimensional);
   BOOST_TEST(h.size() == 5u);  // distinct points
   BOOST_TEST(maxSupport(h.points(), Vector3d(1, 1, 0)) == 2.0);
   // collinear
-  h = dss::mesh::convexHull({Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2), Vector3d(3, 3, 3),
-                             Vector3d(4, 4, 4)}, "line", &info);
+  h = dss::mesh::convexHull({Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2),
+                             Vector3d(3, 3, 3), Vector3d(4, 4, 4)},
+                            "line", &info);
   BOOST_TEST(!info.full_dimensional);
   BOOST_TEST(maxSupport(h.points(), Vector3d(1, 0, 0)) == 4.0);
   // one point, repeated
   h = dss::mesh::convexHull({Vector3d(1, 2, 3), Vector3d(1, 2, 3), Vector3d(1, 2, 3)}, "point");
   BOOST_TEST(h.size() == 1u);
   // tiny (1e-12) but full-dimensional: either answer is correct as long as support is exact
-  std::vector<Vector3d> tiny = {Vector3d(0, 0, 0), Vector3d(1e-12, 0, 0), Vector3d(0, 1e-12, 0), Vector3d(0, 0, 1e-12)};
+  std::vector<Vector3d> tiny = {Vector3d(0, 0, 0), Vector3d(1e-12, 0, 0), Vector3d(0, 1e-12, 0),
+                                Vector3d(0, 0, 1e-12)};
   h = dss::mesh::convexHull(tiny, "tiny");
   BOOST_TEST(maxSupport(h.points(), Vector3d(1, 1, 1)) == 1e-12);
 }
@@ -263,7 +273,8 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_naming_the_source) {
   } catch (const std::runtime_error& e) {
     BOOST_TEST(std::string(e.what()).find("link x collision[2]") != std::string::npos);
   }
-  BOOST_CHECK_THROW(dss::mesh::convexHull({Vector3d(0, 0, 0), Vector3d(NAN, 0, 0)}, "nan"), std::runtime_error);
+  BOOST_CHECK_THROW(dss::mesh::convexHull({Vector3d(0, 0, 0), Vector3d(NAN, 0, 0)}, "nan"),
+                    std::runtime_error);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
@@ -296,12 +307,14 @@ BOOST_AUTO_TEST_CASE(hull_of_tessellation_agrees_with_primitive) {
       // closed surface: every edge used by two triangles
       std::map<std::pair<int, int>, int> edges;
       for (const auto& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k) ++edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+        for (int k = 0; k < 3; ++k)
+          ++edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
       for (const auto& [e, count] : edges) BOOST_TEST(count == 2);
       const auto hull = dss::mesh::convexHull(mesh.vertices, "tessellation");
       for (int i = 0; i < 500; ++i) {
         const Vector3d d = randomUnit(rng);
-        const double exact = std::visit([&](const auto& s) { return s.support(d, Vector3d::Zero()).dot(d); }, c.shape);
+        const double exact = std::visit(
+            [&](const auto& s) { return s.support(d, Vector3d::Zero()).dot(d); }, c.shape);
         const double approx = hull.support(d, Vector3d::Zero()).dot(d);
         BOOST_TEST(approx <= exact + 1e-12);  // k = 1e4 ulps of unit-size coordinates
         BOOST_TEST(approx >= exact - c.radius * chord - 1e-12);
@@ -310,7 +323,8 @@ BOOST_AUTO_TEST_CASE(hull_of_tessellation_agrees_with_primitive) {
   }
   // A hull tessellates to its own facets.
   const auto box = dss::mesh::tessellate(dss::Box::fromSize(Vector3d(1, 2, 3)));
-  const auto again = dss::mesh::tessellate(dss::AnyShape(dss::mesh::convexHull(box.vertices, "box")));
+  const auto again =
+      dss::mesh::tessellate(dss::AnyShape(dss::mesh::convexHull(box.vertices, "box")));
   BOOST_TEST(again.vertices.size() == 8u);
   BOOST_TEST(again.triangles.size() == 12u);
   BOOST_CHECK_THROW(dss::mesh::tessellate(dss::Sphere{1.0}, 2), std::invalid_argument);

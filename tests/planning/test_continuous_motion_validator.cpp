@@ -4,15 +4,15 @@
 // plate), and a seeded plan made with it on our shelf scene has every motion accepted again and
 // every densely interpolated state valid under DSS and fcl-hull. Its motion counts are its own
 // (motionChecks), and it is built only on a DSS validity checker.
-#include <cmath>
-#include <stdexcept>
-
-#include <boost/test/unit_test.hpp>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <stdexcept>
 
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
@@ -36,7 +36,8 @@ BOOST_AUTO_TEST_SUITE(continuous_motion_validator)
 
 BOOST_AUTO_TEST_CASE(continuous_rejects_a_thin_plate_that_discrete_misses) {
   dss::LoadedRobot r;
-  r.model = std::make_shared<const dss::RobotModel>(dss::loadUrdfString(kArmUrdf, "sweeper.urdf", "."));
+  r.model =
+      std::make_shared<const dss::RobotModel>(dss::loadUrdfString(kArmUrdf, "sweeper.urdf", "."));
   // A 1 mm plate on the ray halfway between two of the discrete validator's samples of the
   // motion 0 -> pi/2 (segment count as OMPL computes it: resolution 1% of the 2 pi extent).
   dss::Problem p0 = dss::makeProblem(r, dss::Scene{}, "", {});
@@ -53,7 +54,8 @@ BOOST_AUTO_TEST_CASE(continuous_rejects_a_thin_plate_that_discrete_misses) {
   dss::Obstacle plate;
   plate.name = plate.object_id = "plate";
   plate.shape = dss::Box::fromSize(Eigen::Vector3d(0.3, 0.001, 0.3));
-  plate.X_WO = Eigen::Translation3d(std::cos(angle), std::sin(angle), 0) * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ());
+  plate.X_WO = Eigen::Translation3d(std::cos(angle), std::sin(angle), 0) *
+               Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ());
   plate.X_FO = plate.X_WO;
   scene.obstacles.push_back(plate);
   dss::Problem p = dss::makeProblem(r, scene, "", {});
@@ -99,14 +101,16 @@ BOOST_AUTO_TEST_CASE(needs_a_dss_validity_checker) {
   auto dss_checker = dss::makeValidityChecker(p, {"dss"});
   auto cmv = dss::makeContinuousMotionValidator(p, *dss_checker);
   BOOST_TEST(&cmv->motionChecker().checker() == &dss_checker->checker());
-  BOOST_CHECK_THROW(dss::makeContinuousMotionValidator(p, *dss_checker, 0.0), std::invalid_argument);
+  BOOST_CHECK_THROW(dss::makeContinuousMotionValidator(p, *dss_checker, 0.0),
+                    std::invalid_argument);
 }
 
 BOOST_AUTO_TEST_CASE(shelf_plan_with_continuous_motions) {
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
   const auto r = dss::loadRobot(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf");
   const auto req = dss::loadPlanRequestYaml(dir + "/scenes/shelf_request.yaml");
-  dss::Problem p = dss::makeProblem(r, dss::loadScene(dir + "/scenes/shelf.yaml"), req.group_name, req.startState());
+  dss::Problem p = dss::makeProblem(r, dss::loadScene(dir + "/scenes/shelf.yaml"), req.group_name,
+                                    req.startState());
   auto checker = dss::makeValidityChecker(p, {"dss"});
   auto fcl = dss::makeValidityChecker(p, {"fcl-hull"});
   auto cmv = dss::makeContinuousMotionValidator(p, *checker);

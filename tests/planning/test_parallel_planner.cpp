@@ -2,12 +2,12 @@
 // validator shared between the threads: it solves 8 seeded problems in the shelf scene, every
 // state of the paths is valid under DSS and fcl-hull, with the continuous validator every
 // motion passes it again, and the counters add up across threads.
-#include <random>
-
-#include <boost/test/unit_test.hpp>
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/pRRT.h>
+
+#include <boost/test/unit_test.hpp>
+#include <random>
 
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
@@ -24,8 +24,8 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
   const auto robot = dss::loadRobot(arm + "/dss_arm7.urdf", arm + "/dss_arm7.srdf");
   const auto req = dss::loadPlanRequestYaml(arm + "/scenes/shelf_request.yaml");
   for (const bool continuous : {false, true}) {
-    dss::Problem p =
-        dss::makeProblem(robot, dss::loadScene(arm + "/scenes/shelf.yaml"), req.group_name, req.startState());
+    dss::Problem p = dss::makeProblem(robot, dss::loadScene(arm + "/scenes/shelf.yaml"),
+                                      req.group_name, req.startState());
     auto checker = dss::makeValidityChecker(p, {"dss"});
     auto fcl = dss::makeValidityChecker(p, {"fcl-hull"});
     auto cmv = dss::makeContinuousMotionValidator(p, *checker);
@@ -60,7 +60,8 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
         bool reachable = false;
         for (int v = 0; v < 200 && !reachable; ++v) {
           for (std::size_t i = 0; i < g1.size(); ++i)
-            via_g[i] = std::uniform_real_distribution<double>(p.map->lower(i), p.map->upper(i))(rng);
+            via_g[i] =
+                std::uniform_real_distribution<double>(p.map->lower(i), p.map->upper(i))(rng);
           p.map->fromGroupValues(via_g.data(), via.get());
           reachable = checker->isValid(via.get()) && p.si->checkMotion(start.get(), via.get()) &&
                       p.si->checkMotion(via.get(), goal.get());
@@ -71,7 +72,8 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
       ss.setStartAndGoalStates(start, goal);
       const auto status = ss.solve(20.0);
       BOOST_REQUIRE_MESSAGE(status == ob::PlannerStatus::EXACT_SOLUTION,
-                            "pRRT (continuous=" << continuous << ") problem " << problem << ": " << status.asString());
+                            "pRRT (continuous=" << continuous << ") problem " << problem << ": "
+                                                << status.asString());
       auto path = ss.getSolutionPath();
       for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
         motions_rejected += !cmv->checkMotion(path.getState(i), path.getState(i + 1));
@@ -84,8 +86,10 @@ BOOST_AUTO_TEST_CASE(prrt_two_threads_plans_clean) {
     BOOST_TEST(bad == 0);
     const auto c = checker->counters();
     BOOST_TEST(c.collisions + c.invalid_input <= c.checks);
-    BOOST_TEST_MESSAGE("pRRT x2 (" << (continuous ? "continuous" : "discrete") << "): 8 problems, " << c.checks
-                                   << " state checks, " << cmv->motionChecker().subMotions() << " continuous sub-motions, " << motions_rejected
+    BOOST_TEST_MESSAGE("pRRT x2 (" << (continuous ? "continuous" : "discrete") << "): 8 problems, "
+                                   << c.checks << " state checks, "
+                                   << cmv->motionChecker().subMotions()
+                                   << " continuous sub-motions, " << motions_rejected
                                    << " path motions the continuous validator rejects");
   }
 }

@@ -1,10 +1,10 @@
 // The README's "use the checker from your own OMPL code" snippet, compiled and run as is
 // (between the SNIPPET markers), so that the documentation cannot rot.
-#include <boost/test/unit_test.hpp>
-
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include <boost/test/unit_test.hpp>
 
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/plan_request.h"
@@ -29,7 +29,8 @@ BOOST_AUTO_TEST_CASE(plans_with_the_dss_checker) {
   ss.setStateValidityChecker(checker);
   ob::ScopedState<> start(problem.si->getStateSpace()), goal(problem.si->getStateSpace());
   std::map<std::string, double> goal_by_name = request.startState();
-  for (const auto& c : request.goals.at(0).joint_constraints) goal_by_name[c.joint_name] = c.position;
+  for (const auto& c : request.goals.at(0).joint_constraints)
+    goal_by_name[c.joint_name] = c.position;
   problem.map->fromGroupValues(problem.map->groupValues(request.startState()).data(), start.get());
   problem.map->fromGroupValues(problem.map->groupValues(goal_by_name).data(), goal.get());
   ss.setStartAndGoalStates(start, goal);
@@ -41,7 +42,8 @@ BOOST_AUTO_TEST_CASE(plans_with_the_dss_checker) {
   // resolution (the continuous validator covers the gaps: test_continuous_motion.cpp).
   const og::PathGeometric& path = ss.getSolutionPath();
   BOOST_TEST(path.getStateCount() >= 2u);
-  for (std::size_t i = 0; i < path.getStateCount(); ++i) BOOST_TEST(checker->isValid(path.getState(i)));
+  for (std::size_t i = 0; i < path.getStateCount(); ++i)
+    BOOST_TEST(checker->isValid(path.getState(i)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

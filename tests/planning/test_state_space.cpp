@@ -1,11 +1,11 @@
 // Group state spaces: bounded joints as a real-vector space with the URDF limits, continuous
 // joints as SO2 parts of a compound space, values mapped by joint name; held joints outside
 // their limits are reported. (The collision model's pairs and pruning: tests/checker.)
-#include <cmath>
-
-#include <boost/test/unit_test.hpp>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cmath>
 
 #include "dss/planning/planning_problem.h"
 
@@ -18,7 +18,8 @@ const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots";
 BOOST_AUTO_TEST_SUITE(group_state_space)
 
 BOOST_AUTO_TEST_CASE(arm_group_is_a_bounded_real_vector_space) {
-  const auto r = dss::loadRobot(kRobots + "/dss_arm7/dss_arm7.urdf", kRobots + "/dss_arm7/dss_arm7.srdf");
+  const auto r =
+      dss::loadRobot(kRobots + "/dss_arm7/dss_arm7.urdf", kRobots + "/dss_arm7/dss_arm7.srdf");
   dss::Problem p = dss::makeProblem(r, dss::Scene{}, "arm", {});
   BOOST_TEST(p.map->dimension() == 7u);
   auto rv = std::dynamic_pointer_cast<ob::RealVectorStateSpace>(p.map->space());
@@ -58,7 +59,8 @@ BOOST_AUTO_TEST_CASE(continuous_joints_become_so2_parts) {
   BOOST_TEST(so2 == continuous);
   // Round trip with a wrapped angle.
   std::vector<double> g(p.map->dimension());
-  for (std::size_t i = 0; i < g.size(); ++i) g[i] = 0.5 * (p.map->lower(i) + p.map->upper(i)) + 0.01;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    g[i] = 0.5 * (p.map->lower(i) + p.map->upper(i)) + 0.01;
   ob::ScopedState<> s(p.map->space());
   p.map->fromGroupValues(g.data(), s.get());
   std::vector<double> back(g.size());
@@ -70,7 +72,8 @@ BOOST_AUTO_TEST_CASE(continuous_joints_become_so2_parts) {
 }
 
 BOOST_AUTO_TEST_CASE(held_joint_outside_limits_is_reported) {
-  const auto r = dss::loadRobot(kRobots + "/dss_arm7/dss_arm7.urdf", kRobots + "/dss_arm7/dss_arm7.srdf");
+  const auto r =
+      dss::loadRobot(kRobots + "/dss_arm7/dss_arm7.urdf", kRobots + "/dss_arm7/dss_arm7.srdf");
   // Without an SRDF the group is every active joint: nothing is held, nothing to report.
   dss::LoadedRobot bare{r.model, std::nullopt};
   std::map<std::string, double> start;

@@ -3,16 +3,16 @@
 // state checker's on the mapped joint values; NaN, Inf and out-of-bounds states are invalid and
 // refused before the checker is asked, yet counted by the adapter's counters(); clearance()
 // is the DSS checker's (a bounded approximation), and none for FCL.
-#include <cmath>
-#include <limits>
-#include <random>
-
-#include <boost/test/unit_test.hpp>
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
 
 #include "dss/checker/dss_checker.h"
 #include "dss/planning/planning_problem.h"
@@ -27,7 +27,8 @@ const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
 
 dss::Problem shelfProblem(const dss::LoadedRobot& r) {
   const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
-  return dss::makeProblem(r, dss::loadScene(kArm + "/scenes/shelf.yaml"), req.group_name, req.startState());
+  return dss::makeProblem(r, dss::loadScene(kArm + "/scenes/shelf.yaml"), req.group_name,
+                          req.startState());
 }
 
 // OMPL's seed can be set once per process, before any sampling: a global fixture does it.
@@ -109,7 +110,8 @@ BOOST_AUTO_TEST_CASE(answers_are_the_state_checkers) {
       BOOST_REQUIRE(p.map->toJoints(s.get(), q.data()));
       BOOST_TEST_REQUIRE((q == expected));
       const bool v = c->isValid(s.get());
-      BOOST_TEST(v == (c->checker().check(q.data()) == dss::StateVerdict::kFree), name << " state " << k);
+      BOOST_TEST(v == (c->checker().check(q.data()) == dss::StateVerdict::kFree),
+                 name << " state " << k);
       valid += v;
     }
     BOOST_TEST(valid > 0);
@@ -134,8 +136,9 @@ BOOST_AUTO_TEST_CASE(nan_inf_and_out_of_bounds_states_are_invalid) {
     p.map->fromGroupValues(g.data(), s.get());
     const bool base = c->isValid(s.get());
     (void)base;
-    for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                       -std::numeric_limits<double>::infinity(), 1e6}) {
+    for (double bad :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+          -std::numeric_limits<double>::infinity(), 1e6}) {
       auto h = g;
       h[3] = bad;
       p.map->fromGroupValues(h.data(), s.get());
@@ -169,16 +172,18 @@ BOOST_AUTO_TEST_CASE(counters_count_states_refused_by_the_bounds) {
     const auto mid = randomGroupValues(p, rng);
     std::size_t refused = 0;
     for (std::size_t i = 0; i < mid.size(); ++i)
-      for (double bad : {std::nextafter(p.map->upper(i), 1e300), std::nextafter(p.map->lower(i), -1e300),
-                         p.map->upper(i) + 1.0, p.map->lower(i) - 1.0, std::numeric_limits<double>::quiet_NaN(),
-                         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+      for (double bad :
+           {std::nextafter(p.map->upper(i), 1e300), std::nextafter(p.map->lower(i), -1e300),
+            p.map->upper(i) + 1.0, p.map->lower(i) - 1.0, std::numeric_limits<double>::quiet_NaN(),
+            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
         auto g = mid;
         g[i] = bad;
         p.map->fromGroupValues(g.data(), s.get());
         BOOST_TEST(!c->isValid(s.get()), name << ": joint " << i << " at " << bad);
         ++refused;
       }
-    const dss::CheckerCounters adapter = c->counters() - adapter0, checker = c->checker().counters() - checker0;
+    const dss::CheckerCounters adapter = c->counters() - adapter0,
+                               checker = c->checker().counters() - checker0;
     BOOST_TEST(adapter.checks == refused);
     BOOST_TEST(adapter.invalid_input == refused);
     BOOST_TEST(adapter.collisions == 0u);
@@ -194,7 +199,8 @@ BOOST_AUTO_TEST_CASE(clearance_is_the_dss_checkers) {
   const auto r = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
   const dss::Problem p = shelfProblem(r);
   auto c = dss::makeValidityChecker(p, {"dss"});
-  BOOST_TEST(c->getSpecs().clearanceComputationType == ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE);
+  BOOST_TEST(c->getSpecs().clearanceComputationType ==
+             ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE);
   const auto* dss_checker = dynamic_cast<const dss::DssChecker*>(&c->checker());
   BOOST_REQUIRE(dss_checker);
   auto fcl = dss::makeValidityChecker(p, {"fcl-hull"});

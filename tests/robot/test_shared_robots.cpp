@@ -1,6 +1,5 @@
 // Every URDF and SRDF in ../shared/robots loads with the counts its MANIFEST states.
 #include <boost/test/unit_test.hpp>
-
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -113,7 +112,8 @@ BOOST_AUTO_TEST_CASE(every_orig_urdf_loads_with_package_roots) {
   } catch (const std::runtime_error& ex) {
     const std::string msg = ex.what();
     BOOST_TEST(msg.find("panda_link0") != std::string::npos);
-    BOOST_TEST(msg.find("package://robowflex_resources/panda/meshes/collision/link0.stl") != std::string::npos);
+    BOOST_TEST(msg.find("package://robowflex_resources/panda/meshes/collision/link0.stl") !=
+               std::string::npos);
   }
 }
 
@@ -126,10 +126,21 @@ BOOST_AUTO_TEST_CASE(srdfs_load_and_match_their_urdfs) {
   };
   const std::vector<S> cases = {
       {"panda/panda.srdf", {"panda/panda.urdf"}, 34, 3, 5},
-      {"panda_vamp/panda.srdf", {"panda_vamp/panda.urdf", "panda_vamp/panda_spherized.urdf"}, 34, 3, 5},
+      {"panda_vamp/panda.srdf",
+       {"panda_vamp/panda.urdf", "panda_vamp/panda_spherized.urdf"},
+       34,
+       3,
+       5},
       {"panda_description/panda.srdf",
-       {"panda_description/panda.urdf", "panda_description/panda_collision.urdf"}, 35, 3, 1},
-      {"ur5_robotiq85/ur5.srdf", {"ur5_robotiq85/ur5.urdf", "ur5_robotiq85/ur5_spherized.urdf"}, 88, 2, 3},
+       {"panda_description/panda.urdf", "panda_description/panda_collision.urdf"},
+       35,
+       3,
+       1},
+      {"ur5_robotiq85/ur5.srdf",
+       {"ur5_robotiq85/ur5.urdf", "ur5_robotiq85/ur5_spherized.urdf"},
+       88,
+       2,
+       3},
       {"ur_description/ur5.srdf", {"ur_description/ur5_robot.urdf"}, 10, 0, 0},
   };
   for (const auto& c : cases) {
@@ -158,7 +169,8 @@ BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
   const auto arm = dss::groupActiveJoints(model, srdf, "panda_arm");
   BOOST_TEST(arm.size() == 7u);
   for (std::size_t i = 0; i < arm.size(); ++i)
-    BOOST_TEST(model.joints[model.active_joints[arm[i]]].name == "panda_joint" + std::to_string(i + 1));
+    BOOST_TEST(model.joints[model.active_joints[arm[i]]].name ==
+               "panda_joint" + std::to_string(i + 1));
   const auto hand = dss::groupActiveJoints(model, srdf, "hand");
   BOOST_TEST(hand.size() == 1u);  // finger_joint2 mimics finger_joint1
   BOOST_TEST(dss::groupActiveJoints(model, srdf, "panda_arm_hand").size() == 8u);
@@ -169,18 +181,20 @@ BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
   BOOST_CHECK_THROW(dss::groupActiveJoints(model, srdf, "no_such_group"), std::runtime_error);
   // In VAMP's Panda the fingers are fixed: the hand group has no active joint.
   const auto vamp = dss::loadUrdf((kRobots / "panda_vamp/panda.urdf").string());
-  BOOST_TEST(dss::groupActiveJoints(vamp, dss::loadSrdf((kRobots / "panda_vamp/panda.srdf").string()), "hand").empty());
+  BOOST_TEST(dss::groupActiveJoints(
+                 vamp, dss::loadSrdf((kRobots / "panda_vamp/panda.srdf").string()), "hand")
+                 .empty());
   BOOST_TEST(!vamp.warnings.empty());  // mimic tag on a fixed joint is reported
   // urdfdom's own warnings are kept (MANIFEST: material 'black' used before its definition).
   const auto ur5 = dss::loadUrdf((kRobots / "ur5_robotiq85/ur5.urdf").string());
   BOOST_TEST(ur5.warnings.size() == 1u);
   BOOST_TEST(ur5.warnings.at(0).find("material 'black' undefined") != std::string::npos);
-
 }
 
 BOOST_AUTO_TEST_CASE(panda_fk_geometry_only_matches_all_links) {
   if (!haveShared()) return;
-  for (const char* f : {"panda/panda.urdf", "ur5_robotiq85/ur5.urdf", "iiwa_description/iiwa14_primitive_collision.urdf"}) {
+  for (const char* f : {"panda/panda.urdf", "ur5_robotiq85/ur5.urdf",
+                        "iiwa_description/iiwa14_primitive_collision.urdf"}) {
     const auto model = dss::loadUrdf((kRobots / f).string());
     const dss::Kinematics fast(model), all(model, true);
     BOOST_TEST(all.updatedLinks().size() == model.links.size());
@@ -205,13 +219,16 @@ BOOST_AUTO_TEST_CASE(mbm_quirks_warn_not_refuse) {
   if (!haveShared()) return;
   const auto panda = dss::loadUrdf((kRobots / "panda/panda.urdf").string());
   std::vector<std::string> notes;
-  const auto q = dss::assembleState(panda, {{"panda_joint1", 0.1}, {"panda_finger_joint1", 0.065},
-                                            {"panda_finger_joint2", 0.065}}, "mbm start", &notes);
+  const auto q = dss::assembleState(
+      panda,
+      {{"panda_joint1", 0.1}, {"panda_finger_joint1", 0.065}, {"panda_finger_joint2", 0.065}},
+      "mbm start", &notes);
   BOOST_TEST(notes.size() == 1u);  // the finger above 0.04; finger 2 agrees with its leader
   BOOST_TEST(q[panda.joints[panda.jointIndex("panda_finger_joint1")].active_index] == 0.065);
   const auto ur5 = dss::loadUrdf((kRobots / "ur5_robotiq85/ur5.urdf").string());
   notes.clear();
-  dss::assembleState(ur5, {{"shoulder_pan_joint", 0.0}, {"robotiq_85_left_knuckle_joint", 0.0}}, "ur5 start", &notes);
+  dss::assembleState(ur5, {{"shoulder_pan_joint", 0.0}, {"robotiq_85_left_knuckle_joint", 0.0}},
+                     "ur5 start", &notes);
   BOOST_TEST(notes.size() == 1u);  // a fixed Robotiq joint is ignored, with a note
 }
 

@@ -1,15 +1,15 @@
 // Small URDFs written inline: forward kinematics against hand-computed poses, mimic joints,
 // mesh path resolution, self-collision pairs, disabled-pair sampling and bad input.
-#include <boost/test/unit_test.hpp>
+#include <unistd.h>
 
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
-#include <unistd.h>
 
 #include "dss/robot/collision_pairs.h"
 #include "dss/robot/kinematics.h"
@@ -40,10 +40,14 @@ std::string write(const std::string& name, const std::string& text) {
 
 const char* kTetraStl =
     "solid t\n"
-    "facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 0 0.1 0\n vertex 0.1 0 0\n endloop\nendfacet\n"
-    "facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 0.1 0 0\n vertex 0 0 0.1\n endloop\nendfacet\n"
-    "facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 0 0.1\n vertex 0 0.1 0\n endloop\nendfacet\n"
-    "facet normal 1 1 1\n outer loop\n vertex 0.1 0 0\n vertex 0 0.1 0\n vertex 0 0 0.1\n endloop\nendfacet\n"
+    "facet normal 0 0 -1\n outer loop\n vertex 0 0 0\n vertex 0 0.1 0\n vertex 0.1 0 0\n "
+    "endloop\nendfacet\n"
+    "facet normal 0 -1 0\n outer loop\n vertex 0 0 0\n vertex 0.1 0 0\n vertex 0 0 0.1\n "
+    "endloop\nendfacet\n"
+    "facet normal -1 0 0\n outer loop\n vertex 0 0 0\n vertex 0 0 0.1\n vertex 0 0.1 0\n "
+    "endloop\nendfacet\n"
+    "facet normal 1 1 1\n outer loop\n vertex 0.1 0 0\n vertex 0 0.1 0\n vertex 0 0 0.1\n "
+    "endloop\nendfacet\n"
     "endsolid t\n";
 
 // base --j1 (revolute z at (0,0,1))--> l1 --f (fixed, xyz 1 0 0, yaw pi/2)--> l2
@@ -74,9 +78,12 @@ Isometry3d pose(const Vector3d& p, const Eigen::Matrix3d& R) {
   X.translation() = p;
   return X;
 }
-Eigen::Matrix3d rot(double a, const Vector3d& axis) { return Eigen::AngleAxisd(a, axis.normalized()).toRotationMatrix(); }
+Eigen::Matrix3d rot(double a, const Vector3d& axis) {
+  return Eigen::AngleAxisd(a, axis.normalized()).toRotationMatrix();
+}
 
-std::string errorOf(const std::string& urdf_text, const std::string& name, dss::LoadOptions o = {}) {
+std::string errorOf(const std::string& urdf_text, const std::string& name,
+                    dss::LoadOptions o = {}) {
   try {
     dss::loadUrdf(write(name, urdf_text), o);
   } catch (const std::exception& e) {
@@ -85,7 +92,9 @@ std::string errorOf(const std::string& urdf_text, const std::string& name, dss::
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 }  // namespace
 
@@ -152,9 +161,12 @@ BOOST_AUTO_TEST_CASE(general_axes_and_mimic_chains) {
   const Isometry3d b = pose(Vector3d::Zero(), rot(q, Vector3d(1, 2, 3)));
   Isometry3d pj = Isometry3d::Identity();
   pj.translation() = Vector3d(0, 1, 0);
-  pj.linear() = (Eigen::AngleAxisd(0.3, Vector3d::UnitZ()) * Eigen::AngleAxisd(0.2, Vector3d::UnitY()) *
-                 Eigen::AngleAxisd(0.1, Vector3d::UnitX())).toRotationMatrix();
-  const Isometry3d c = b * pj * pose(vp * Vector3d(0, -1, 1).normalized(), Eigen::Matrix3d::Identity());
+  pj.linear() =
+      (Eigen::AngleAxisd(0.3, Vector3d::UnitZ()) * Eigen::AngleAxisd(0.2, Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.1, Vector3d::UnitX()))
+          .toRotationMatrix();
+  const Isometry3d c =
+      b * pj * pose(vp * Vector3d(0, -1, 1).normalized(), Eigen::Matrix3d::Identity());
   const Isometry3d d = c * pose(vq * Vector3d(0, 0, -1), Eigen::Matrix3d::Identity());
   BOOST_TEST((X[m.linkIndex("b")].matrix() - b.matrix()).norm() < 1e-14);
   BOOST_TEST((X[m.linkIndex("c")].matrix() - c.matrix()).norm() < 1e-14);
@@ -167,7 +179,7 @@ BOOST_AUTO_TEST_CASE(general_axes_and_mimic_chains) {
 BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
   const int n = 75;
   const char* axes[6] = {"1 0 0", "0 1 0", "0 0 1", "-1 0 0", "0 -1 0", "0 0 -1"};
-  const Vector3d axis_v[6] = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ(),
+  const Vector3d axis_v[6] = {Vector3d::UnitX(),  Vector3d::UnitY(),  Vector3d::UnitZ(),
                               -Vector3d::UnitX(), -Vector3d::UnitY(), -Vector3d::UnitZ()};
   std::string urdf = "<robot name=\"chain\"><link name=\"l0\"/>\n";
   for (int i = 1; i <= n; ++i) {
@@ -175,8 +187,9 @@ BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
             "\"><collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>\n";
     // every fifth joint fixed, so that fixed joints are folded between rotating ones
     const bool fixed = i % 5 == 0;
-    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" + (fixed ? "fixed" : "continuous") +
-            "\"><parent link=\"l" + std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" +
+            (fixed ? "fixed" : "continuous") + "\"><parent link=\"l" + std::to_string(i - 1) +
+            "\"/><child link=\"l" + std::to_string(i) +
             "\"/><origin xyz=\"0.1 0.02 0.03\" rpy=\"0.3 -0.2 0.1\"/><axis xyz=\"" + axes[i % 6] +
             "\"/></joint>\n";
   }
@@ -185,8 +198,10 @@ BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
   const dss::Kinematics kin(m);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> angle(-20.0, 20.0);
-  Eigen::Matrix3d R_o = (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.2, Vector3d::UnitY()) *
-                         Eigen::AngleAxisd(0.3, Vector3d::UnitX())).toRotationMatrix();
+  Eigen::Matrix3d R_o =
+      (Eigen::AngleAxisd(0.1, Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.2, Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.3, Vector3d::UnitX()))
+          .toRotationMatrix();
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<double> q(m.numActiveJoints());
     for (double& v : q) v = angle(rng);
@@ -195,9 +210,11 @@ BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
     for (int i = 1; i <= n; ++i) {
       const auto& joint = m.joints[m.jointIndex("j" + std::to_string(i))];
       ref = ref * pose(Vector3d(0.1, 0.02, 0.03), R_o);
-      if (joint.active_index >= 0) ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 6]));
+      if (joint.active_index >= 0)
+        ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 6]));
       const double err = (X[m.linkIndex("l" + std::to_string(i))].matrix() - ref.matrix()).norm();
-      BOOST_TEST_REQUIRE(err < 1e-12 * (1 + i), "link l" << i << " trial " << trial << " error " << err);
+      BOOST_TEST_REQUIRE(err < 1e-12 * (1 + i),
+                         "link l" << i << " trial " << trial << " error " << err);
     }
   }
 }
@@ -208,24 +225,29 @@ BOOST_AUTO_TEST_CASE(long_chain_of_axis_aligned_joints) {
 BOOST_AUTO_TEST_CASE(chain_of_quarter_turn_origins) {
   const int n = 60;
   const char* axes[7] = {"1 0 0", "0 1 0", "0 0 1", "-1 0 0", "0 -1 0", "0 0 -1", "0.6 0 0.8"};
-  const Vector3d axis_v[7] = {Vector3d::UnitX(),  Vector3d::UnitY(),  Vector3d::UnitZ(),     -Vector3d::UnitX(),
-                              -Vector3d::UnitY(), -Vector3d::UnitZ(), Vector3d(0.6, 0, 0.8)};
+  const Vector3d axis_v[7] = {Vector3d::UnitX(),    Vector3d::UnitY(),  Vector3d::UnitZ(),
+                              -Vector3d::UnitX(),   -Vector3d::UnitY(), -Vector3d::UnitZ(),
+                              Vector3d(0.6, 0, 0.8)};
   const char* quarter[4] = {"0", "1.5707963267948966", "3.141592653589793", "-1.57079632679"};
   const double quarter_v[4] = {0.0, M_PI / 2, M_PI, -M_PI / 2};
   std::mt19937_64 rng(11);
   std::vector<Eigen::Matrix3d> R_o(n + 1);
   std::string urdf = "<robot name=\"quarters\"><link name=\"l0\"/>\n";
   for (int i = 1; i <= n; ++i) {
-    const int r = static_cast<int>(rng() % 4), p = static_cast<int>(rng() % 4), y = static_cast<int>(rng() % 4);
-    R_o[i] = (Eigen::AngleAxisd(quarter_v[y], Vector3d::UnitZ()) * Eigen::AngleAxisd(quarter_v[p], Vector3d::UnitY()) *
-              Eigen::AngleAxisd(quarter_v[r], Vector3d::UnitX())).toRotationMatrix();
+    const int r = static_cast<int>(rng() % 4), p = static_cast<int>(rng() % 4),
+              y = static_cast<int>(rng() % 4);
+    R_o[i] = (Eigen::AngleAxisd(quarter_v[y], Vector3d::UnitZ()) *
+              Eigen::AngleAxisd(quarter_v[p], Vector3d::UnitY()) *
+              Eigen::AngleAxisd(quarter_v[r], Vector3d::UnitX()))
+                 .toRotationMatrix();
     urdf += "<link name=\"l" + std::to_string(i) +
             "\"><collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>\n";
     const bool fixed = i % 4 == 0;
-    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" + (fixed ? "fixed" : "continuous") +
-            "\"><parent link=\"l" + std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
-            "\"/><origin xyz=\"0.1 -0.02 0.03\" rpy=\"" + quarter[r] + " " + quarter[p] + " " + quarter[y] +
-            "\"/><axis xyz=\"" + axes[i % 7] + "\"/></joint>\n";
+    urdf += "<joint name=\"j" + std::to_string(i) + "\" type=\"" +
+            (fixed ? "fixed" : "continuous") + "\"><parent link=\"l" + std::to_string(i - 1) +
+            "\"/><child link=\"l" + std::to_string(i) +
+            "\"/><origin xyz=\"0.1 -0.02 0.03\" rpy=\"" + quarter[r] + " " + quarter[p] + " " +
+            quarter[y] + "\"/><axis xyz=\"" + axes[i % 7] + "\"/></joint>\n";
   }
   urdf += "</robot>";
   const auto m = dss::loadUrdf(write("quarters.urdf", urdf));
@@ -239,9 +261,11 @@ BOOST_AUTO_TEST_CASE(chain_of_quarter_turn_origins) {
     for (int i = 1; i <= n; ++i) {
       const auto& joint = m.joints[m.jointIndex("j" + std::to_string(i))];
       ref = ref * pose(Vector3d(0.1, -0.02, 0.03), R_o[i]);
-      if (joint.active_index >= 0) ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 7]));
+      if (joint.active_index >= 0)
+        ref = ref * pose(Vector3d::Zero(), rot(q[joint.active_index], axis_v[i % 7]));
       const double err = (X[m.linkIndex("l" + std::to_string(i))].matrix() - ref.matrix()).norm();
-      BOOST_TEST_REQUIRE(err < 1e-10 * (1 + i), "link l" << i << " trial " << trial << " error " << err);
+      BOOST_TEST_REQUIRE(err < 1e-10 * (1 + i),
+                         "link l" << i << " trial " << trial << " error " << err);
     }
   }
 }
@@ -267,7 +291,9 @@ BOOST_AUTO_TEST_CASE(mesh_paths) {
     <collision><geometry><mesh filename="package://meshes/t.stl"/></geometry></collision>
     <collision><geometry><mesh filename="meshes/t.stl"/></geometry></collision>
     <collision><geometry><mesh filename="package://xpl/m/t.stl"/></geometry></collision>
-    <collision><geometry><mesh filename="file://)" + (tempDir() / "robotdir/meshes/t.stl").string() + R"("/></geometry></collision>
+    <collision><geometry><mesh filename="file://)" +
+                           (tempDir() / "robotdir/meshes/t.stl").string() +
+                           R"("/></geometry></collision>
   </link></robot>)";
   const std::string path = write("robotdir/p.urdf", urdf);
   ::setenv("ROS_PACKAGE_PATH", (tempDir() / "ws").c_str(), 1);
@@ -299,49 +325,61 @@ BOOST_AUTO_TEST_CASE(bad_input_names_file_and_element) {
   BOOST_TEST(contains(e, "malformed.urdf:"));
   BOOST_TEST(contains(e, "malformed XML"));
 
-  e = errorOf(R"(<robot name="x"><link name="a"><collision><geometry><mesh filename="nowhere.stl"/></geometry></collision></link></robot>)",
-              "missing_mesh.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"><collision><geometry><mesh filename="nowhere.stl"/></geometry></collision></link></robot>)",
+      "missing_mesh.urdf");
   BOOST_TEST(contains(e, "missing_mesh.urdf:1"));
   BOOST_TEST(contains(e, "link 'a' collision[0]"));
   BOOST_TEST(contains(e, "nowhere.stl"));
 
   write("empty.stl", "");
-  e = errorOf(R"(<robot name="x"><link name="a"><collision><geometry><mesh filename="empty.stl"/></geometry></collision></link></robot>)",
-              "empty_mesh.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"><collision><geometry><mesh filename="empty.stl"/></geometry></collision></link></robot>)",
+      "empty_mesh.urdf");
   BOOST_TEST(contains(e, "empty_mesh.urdf"));
   BOOST_TEST(contains(e, "link 'a' collision[0]"));
   BOOST_TEST(contains(e, "empty.stl"));
 
-  e = errorOf("<robot name=\"x\">\n<link name=\"a\">\n<collision><geometry><box size=\"1 -1 1\"/></geometry></collision></link></robot>",
-              "negative.urdf");
+  e = errorOf(
+      "<robot name=\"x\">\n<link name=\"a\">\n<collision><geometry><box size=\"1 -1 "
+      "1\"/></geometry></collision></link></robot>",
+      "negative.urdf");
   BOOST_TEST(contains(e, "negative.urdf:3"));
   BOOST_TEST(contains(e, "link 'a' collision[0]"));
   BOOST_TEST(contains(e, "negative"));
 
-  e = errorOf(R"(<robot name="x"><link name="a"><collision><origin xyz="0 nan 0"/><geometry><sphere radius="1"/></geometry></collision></link></robot>)",
-              "nan_collision.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"><collision><origin xyz="0 nan 0"/><geometry><sphere radius="1"/></geometry></collision></link></robot>)",
+      "nan_collision.urdf");
   BOOST_TEST(contains(e, "nan_collision.urdf"));
   BOOST_TEST(contains(e, "link 'a' collision[0] origin xyz"));
 
-  e = errorOf("<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>\n<joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/>\n<origin rpy=\"0 0 NaN\"/></joint></robot>",
-              "nan_joint.urdf");
+  e = errorOf(
+      "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>\n<joint name=\"j\" "
+      "type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/>\n<origin rpy=\"0 0 "
+      "NaN\"/></joint></robot>",
+      "nan_joint.urdf");
   BOOST_TEST(contains(e, "nan_joint.urdf:3"));
   BOOST_TEST(contains(e, "joint 'j' origin rpy"));
 
-  e = errorOf(R"(<robot name="x"><link name="a"/><link name="b"/><joint name="free" type="floating"><parent link="a"/><child link="b"/></joint></robot>)",
-              "floating.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"/><link name="b"/><joint name="free" type="floating"><parent link="a"/><child link="b"/></joint></robot>)",
+      "floating.urdf");
   BOOST_TEST(contains(e, "joint 'free' is floating"));
 
-  e = errorOf(R"(<robot name="x"><link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint></robot>)",
-              "nolimit.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint></robot>)",
+      "nolimit.urdf");
   BOOST_TEST(contains(e, "nolimit.urdf"));
 
-  e = errorOf(R"(<robot name="x"><link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="nope"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint></robot>)",
-              "badchild.urdf");
+  e = errorOf(
+      R"(<robot name="x"><link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="nope"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint></robot>)",
+      "badchild.urdf");
   BOOST_TEST(contains(e, "badchild.urdf"));
 
   BOOST_TEST(contains(errorOf("", "empty.urdf"), "empty.urdf"));
-  BOOST_CHECK_THROW(dss::loadUrdf((tempDir() / "does_not_exist.urdf").string()), std::runtime_error);
+  BOOST_CHECK_THROW(dss::loadUrdf((tempDir() / "does_not_exist.urdf").string()),
+                    std::runtime_error);
 }
 
 BOOST_AUTO_TEST_CASE(dropped_collisions_are_errors_or_loud_warnings) {
@@ -360,8 +398,9 @@ BOOST_AUTO_TEST_CASE(dropped_collisions_are_errors_or_loud_warnings) {
   o.allow_dropped_collisions = true;
   const auto m = dss::loadUrdf(write("torus_ok.urdf", urdf), o);
   BOOST_TEST(m.numCollisionElements() == 3u);  // sphere, box, capsule (an extension we read)
-  BOOST_TEST(std::count_if(m.warnings.begin(), m.warnings.end(),
-                           [](const std::string& w) { return contains(w, "dropped collision") && contains(w, "<torus>"); }) == 1);
+  BOOST_TEST(std::count_if(m.warnings.begin(), m.warnings.end(), [](const std::string& w) {
+               return contains(w, "dropped collision") && contains(w, "<torus>");
+             }) == 1);
   BOOST_TEST(std::holds_alternative<dss::Capsule>(m.links[0].collisions[2].shape));
 }
 
@@ -386,11 +425,14 @@ BOOST_AUTO_TEST_CASE(self_collision_pairs_skip_adjacent_across_empty_links) {
     return dss::LinkPair{std::min(idx(x), idx(y)), std::max(idx(x), idx(y))};
   };
   const auto adj = dss::adjacentLinkPairs(m);
-  std::vector<dss::LinkPair> expected = {pr("a", "b"), pr("a", "d"), pr("b", "d"), pr("b", "c"), pr("c", "f")};
+  std::vector<dss::LinkPair> expected = {pr("a", "b"), pr("a", "d"), pr("b", "d"), pr("b", "c"),
+                                         pr("c", "f")};
   std::sort(expected.begin(), expected.end());
   BOOST_TEST(adj == expected);
   // 5 geometry links: 10 pairs; 5 adjacent; c-f is also rigid but counted adjacent.
-  const auto srdf = dss::parseSrdf(R"(<robot name="x"><disable_collisions link1="d" link2="c" reason="Never"/></robot>)", "x.srdf");
+  const auto srdf = dss::parseSrdf(
+      R"(<robot name="x"><disable_collisions link1="d" link2="c" reason="Never"/></robot>)",
+      "x.srdf");
   const auto pairs = dss::selfCollisionPairs(m, &srdf, {{"a", "f"}});
   BOOST_TEST(pairs.all_pairs == 10u);
   BOOST_TEST(pairs.adjacent == 5u);
@@ -398,7 +440,8 @@ BOOST_AUTO_TEST_CASE(self_collision_pairs_skip_adjacent_across_empty_links) {
   BOOST_TEST(pairs.allowed == 1u);
   BOOST_TEST(pairs.pairs.size() == 3u);  // a-c, b-f, d-f
   BOOST_TEST_MESSAGE(pairs.summary());
-  const auto bad = dss::parseSrdf(R"(<robot name="x"><disable_collisions link1="zz" link2="c"/></robot>)", "bad.srdf");
+  const auto bad = dss::parseSrdf(
+      R"(<robot name="x"><disable_collisions link1="zz" link2="c"/></robot>)", "bad.srdf");
   BOOST_CHECK_THROW(dss::selfCollisionPairs(m, &bad), std::runtime_error);
 }
 
@@ -423,7 +466,8 @@ BOOST_AUTO_TEST_CASE(disabled_pairs_by_sampling) {
   o.include_default = false;
   const auto r = dss::computeDisabledPairs(m, o);
   std::map<std::pair<std::string, std::string>, std::string> reason;
-  for (const auto& p : r.pairs) reason[{std::min(p.link1, p.link2), std::max(p.link1, p.link2)}] = p.reason;
+  for (const auto& p : r.pairs)
+    reason[{std::min(p.link1, p.link2), std::max(p.link1, p.link2)}] = p.reason;
   auto why = [&](const std::string& a, const std::string& b) {
     const auto it = reason.find({std::min(a, b), std::max(a, b)});
     return it == reason.end() ? std::string("checked") : it->second;
@@ -447,14 +491,19 @@ BOOST_AUTO_TEST_CASE(srdf_bad_input) {
   BOOST_TEST(contains(msg, "bad.srdf:"));
   try {
     msg.clear();
-    dss::parseSrdf("<robot name='x'>\n<group_state name='s' group='g'>\n<joint name='j' value='abc'/></group_state></robot>", "val.srdf");
+    dss::parseSrdf(
+        "<robot name='x'>\n<group_state name='s' group='g'>\n<joint name='j' "
+        "value='abc'/></group_state></robot>",
+        "val.srdf");
   } catch (const std::exception& e) {
     msg = e.what();
   }
   BOOST_TEST(contains(msg, "val.srdf:3"));
   const auto m = dss::loadUrdf(write("arm2.urdf", kArm));
-  const auto s = dss::parseSrdf("<robot name='arm'><group name='g'><joint name='j1'/><joint name='zz'/></group>"
-                                "<group name='c'><chain base_link='base' tip_link='l3'/></group></robot>", "g.srdf");
+  const auto s = dss::parseSrdf(
+      "<robot name='arm'><group name='g'><joint name='j1'/><joint name='zz'/></group>"
+      "<group name='c'><chain base_link='base' tip_link='l3'/></group></robot>",
+      "g.srdf");
   BOOST_CHECK_THROW(dss::groupActiveJoints(m, s, "g"), std::runtime_error);
   BOOST_TEST(dss::groupActiveJoints(m, s, "c") == (std::vector<int>{0, 1}));
   BOOST_TEST(dss::checkSrdfAgainstModel(m, s).size() == 1u);
@@ -465,7 +514,8 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(kinematics_folding)
 
 BOOST_AUTO_TEST_CASE(fixed_links_without_geometry_are_folded) {
-  // a -j(rev)-> b -f1(fixed)-> c(no geometry) -f2(fixed)-> d(geometry); e hangs off c without geometry.
+  // a -j(rev)-> b -f1(fixed)-> c(no geometry) -f2(fixed)-> d(geometry); e hangs off c without
+  // geometry.
   const std::string urdf = R"(<robot name="f">
   <link name="a"/><link name="b"/><link name="c"/><link name="e"/>
   <link name="d"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
@@ -481,7 +531,8 @@ BOOST_AUTO_TEST_CASE(fixed_links_without_geometry_are_folded) {
   const auto A = fast.linkPoses({0.8, 0.1}), B = all.linkPoses({0.8, 0.1});
   const int d = m.linkIndex("d");
   BOOST_TEST((A[d].matrix() - B[d].matrix()).norm() < 1e-14);
-  const Isometry3d b = pose(Vector3d(0, 0, 1), rot(0.3, Vector3d::UnitX()) * rot(0.8, Vector3d::UnitY()));
+  const Isometry3d b =
+      pose(Vector3d(0, 0, 1), rot(0.3, Vector3d::UnitX()) * rot(0.8, Vector3d::UnitY()));
   const Isometry3d expect = b * pose(Vector3d(0.5, 0, 0), rot(0.4, Vector3d::UnitY())) *
                             pose(Vector3d(0, 0.5, 0), rot(0.6, Vector3d::UnitZ()));
   BOOST_TEST((A[d].matrix() - expect.matrix()).norm() < 1e-14);
@@ -497,12 +548,14 @@ BOOST_AUTO_TEST_CASE(assemble_state_from_named_values) {
   const auto m = dss::loadUrdf(write("arm3.urdf", kArm));
   std::vector<std::string> notes;
   // j2 above its limit (kept, noted), m is a mimic (ignored, disagreement noted), f is fixed.
-  const auto q = dss::assembleState(m, {{"j1", 0.5}, {"j2", 0.65}, {"m", 0.0}, {"f", 1.0}}, "req.yaml", &notes);
+  const auto q = dss::assembleState(m, {{"j1", 0.5}, {"j2", 0.65}, {"m", 0.0}, {"f", 1.0}},
+                                    "req.yaml", &notes);
   BOOST_TEST(q == (std::vector<double>{0.5, 0.65}));
   BOOST_TEST(notes.size() == 3u);
   for (const auto& n : notes) BOOST_TEST(contains(n, "req.yaml: "));
   // Unnamed joints keep the base state.
-  BOOST_TEST(dss::assembleState(m, {{"j2", 0.1}}, "s", nullptr, {2.0, 0.0}) == (std::vector<double>{2.0, 0.1}));
+  BOOST_TEST(dss::assembleState(m, {{"j2", 0.1}}, "s", nullptr, {2.0, 0.0}) ==
+             (std::vector<double>{2.0, 0.1}));
   try {
     dss::assembleState(m, {{"elbow", 0.1}}, "req.yaml");
     BOOST_FAIL("expected an exception");

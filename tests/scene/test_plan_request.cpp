@@ -1,8 +1,7 @@
 // MotionPlanRequest YAML: every MotionBenchMaker request loads (group, start state, joint
 // goals), and bad requests are refused with the file and line.
-#include <filesystem>
-
 #include <boost/test/unit_test.hpp>
+#include <filesystem>
 
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_error.h"
@@ -54,13 +53,16 @@ BOOST_AUTO_TEST_CASE(key_order_and_values) {
 }
 
 BOOST_AUTO_TEST_CASE(joints_checked_against_a_robot) {
-  const std::string text = "group_name: g\nstart_state:\n  joint_state:\n    name: [a, b, grip]\n"
-                           "    position: [0, 1, 0]\ngoal_constraints:\n  - joint_constraints:\n"
-                           "      - {joint_name: a, position: 1}\n";
+  const std::string text =
+      "group_name: g\nstart_state:\n  joint_state:\n    name: [a, b, grip]\n"
+      "    position: [0, 1, 0]\ngoal_constraints:\n  - joint_constraints:\n"
+      "      - {joint_name: a, position: 1}\n";
   const dss::PlanRequest r = dss::parsePlanRequestYaml(text, "req.yaml");
   const auto ignored = dss::checkRequestJoints(r, {"a", "b"}, {"grip"});
   BOOST_TEST(ignored == std::vector<std::string>{"grip"});
-  std::string m = thrownMessage<dss::SceneError>([&] { dss::checkRequestJoints(r, {"a", "b"}, {}); });
+  std::string m = thrownMessage<dss::SceneError>([&] {
+    dss::checkRequestJoints(r, {"a", "b"}, {});
+  });
   BOOST_TEST(contains(m, "req.yaml"));
   BOOST_TEST(contains(m, "'grip'"));
   m = thrownMessage<dss::SceneError>([&] { dss::checkRequestJoints(r, {"b"}, {"a", "grip"}); });
@@ -72,22 +74,28 @@ BOOST_AUTO_TEST_CASE(errors) {
   auto msgOf = [](const std::string& text) {
     return thrownMessage<dss::SceneError>([&] { dss::parsePlanRequestYaml(text, "req.yaml"); });
   };
-  const std::string start = "start_state:\n  joint_state:\n    name: [a, b]\n    position: [0, 1]\n";
-  const std::string goal = "goal_constraints:\n  - joint_constraints:\n"
-                           "      - {joint_name: a, position: 1, tolerance_above: 0.1}\n";
-  const dss::PlanRequest ok = dss::parsePlanRequestYaml("group_name: g\n" + start + goal, "ok.yaml");
+  const std::string start =
+      "start_state:\n  joint_state:\n    name: [a, b]\n    position: [0, 1]\n";
+  const std::string goal =
+      "goal_constraints:\n  - joint_constraints:\n"
+      "      - {joint_name: a, position: 1, tolerance_above: 0.1}\n";
+  const dss::PlanRequest ok =
+      dss::parsePlanRequestYaml("group_name: g\n" + start + goal, "ok.yaml");
   BOOST_TEST(ok.goals[0].joint_constraints[0].tolerance_above == 0.1);
   std::string m = msgOf(start + goal);
   BOOST_TEST(contains(m, "group_name"));
   BOOST_TEST(contains(m, "req.yaml"));
-  m = msgOf("group_name: g\nstart_state:\n  joint_state:\n    name: [a, b]\n    position: [0]\n" + goal);
+  m = msgOf("group_name: g\nstart_state:\n  joint_state:\n    name: [a, b]\n    position: [0]\n" +
+            goal);
   BOOST_TEST(contains(m, "2 names but 1 positions"));
   BOOST_TEST(contains(m, "req.yaml:4"));
-  m = msgOf("group_name: g\n" + start + "goal_constraints:\n  - joint_constraints:\n"
+  m = msgOf("group_name: g\n" + start +
+            "goal_constraints:\n  - joint_constraints:\n"
             "      - {joint_name: a}\n");
   BOOST_TEST(contains(m, "joint 'a'"));
   BOOST_TEST(contains(m, "position"));
-  m = msgOf("group_name: g\n" + start + "goal_constraints:\n  - position_constraints: [{}]\n"
+  m = msgOf("group_name: g\n" + start +
+            "goal_constraints:\n  - position_constraints: [{}]\n"
             "    joint_constraints: []\n");
   BOOST_TEST(contains(m, "position_constraints"));
   m = msgOf("group_name: [g\n");

@@ -1,12 +1,11 @@
 // PlanningScene YAML: every MotionBenchMaker scene and template loads with the right objects,
 // object poses compose with primitive poses, and bad input is refused with a message that
 // names the file, the line and the object.
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <regex>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/scene/planning_scene_yaml.h"
 #include "dss/scene/scene_error.h"
@@ -21,11 +20,13 @@ struct TypeCounts {
 };
 
 // MANIFEST.md of the shared scenes: every scene of a type has the same object set.
-const std::map<std::string, TypeCounts> kExpected = {
-    {"bookshelf_small", {7, 3, 4}},  {"bookshelf_tall", {15, 9, 6}},
-    {"bookshelf_thin", {21, 10, 11}}, {"box", {7, 1, 6}},
-    {"cage", {8, 0, 8}},             {"table_pick", {12, 2, 10}},
-    {"table_under_pick", {12, 2, 10}}};
+const std::map<std::string, TypeCounts> kExpected = {{"bookshelf_small", {7, 3, 4}},
+                                                     {"bookshelf_tall", {15, 9, 6}},
+                                                     {"bookshelf_thin", {21, 10, 11}},
+                                                     {"box", {7, 1, 6}},
+                                                     {"cage", {8, 0, 8}},
+                                                     {"table_pick", {12, 2, 10}},
+                                                     {"table_under_pick", {12, 2, 10}}};
 
 // Independent count from the text: one "type: <primitive>" line per primitive.
 int countTypeLines(const std::string& text, const std::string& type) {
@@ -113,8 +114,8 @@ BOOST_AUTO_TEST_CASE(ur5_table_pick_poses_are_composed) {
   // primitive at (0.85, 0, 0.8): p + (0.85 cos, 0.85 sin, 0.8).
   const double z = 0.9972514405491772, w = 0.07409159414259425, n = std::hypot(z, w);
   const double c = (w * w - z * z) / (n * n), sn = 2 * z * w / (n * n);
-  const Eigen::Vector3d expected(-0.06371788662107358 + 0.85 * c,
-                                 -0.1102475820769556 + 0.85 * sn, 0.08705641176758652 + 0.8);
+  const Eigen::Vector3d expected(-0.06371788662107358 + 0.85 * c, -0.1102475820769556 + 0.85 * sn,
+                                 0.08705641176758652 + 0.8);
   // The same, evaluated once outside the program: (-0.904385627272669, 0.015361931208232468,
   // 0.8870564117675865).
   BOOST_TEST((can->X_WO.translation() - expected).norm() < 1e-12);
@@ -148,8 +149,8 @@ BOOST_AUTO_TEST_CASE(templates_load_in_base_link_frame) {
                  countTypeLines(text, "box") + countTypeLines(text, "cylinder"));
       BOOST_TEST(s.unresolvedFrames() == std::vector<std::string>{"base_link"});
       // Unknown frame: an error that names the frame and an object.
-      const std::string msg = thrownMessage<dss::SceneError>(
-          [&] { dss::resolveFrames(s, dss::FrameMap{}, true); });
+      const std::string msg =
+          thrownMessage<dss::SceneError>([&] { dss::resolveFrames(s, dss::FrameMap{}, true); });
       BOOST_TEST(contains(msg, "base_link"));
       BOOST_TEST(contains(msg, f));
       dss::FrameMap frames;
@@ -209,22 +210,26 @@ BOOST_AUTO_TEST_CASE(mesh_by_resource) {
   if (skipWithoutShared()) return;
   const std::string stl =
       scenesDir() + "/mbm_templates/configs/scenes/kitchen/meshes/cupboard_door_l.stl";
-  const std::string text = "world:\n  collision_objects:\n    - id: door\n      meshes:\n"
-                           "        - resource: file://" + stl + "\n"
-                           "          dimensions: [2, 2, 2]\n"
-                           "      mesh_poses:\n        - position: [0, 0, 0]\n"
-                           "          orientation: [0, 0, 0, 1]\n";
+  const std::string text =
+      "world:\n  collision_objects:\n    - id: door\n      meshes:\n"
+      "        - resource: file://" +
+      stl +
+      "\n"
+      "          dimensions: [2, 2, 2]\n"
+      "      mesh_poses:\n        - position: [0, 0, 0]\n"
+      "          orientation: [0, 0, 0, 1]\n";
   const dss::Scene s = dss::parsePlanningSceneYaml(text, "/tmp/inline.yaml");
   BOOST_REQUIRE(s.obstacles.size() == 1u);
   const auto& hull = std::get<dss::ConvexHull>(s.obstacles[0].shape);
   BOOST_TEST(hull.size() >= 4u);
   // Missing resource: the error names the URI and the object.
-  const std::string bad = "world:\n  collision_objects:\n    - id: ghost\n      meshes:\n"
-                          "        - resource: package://nowhere/x.stl\n"
-                          "      mesh_poses:\n        - position: [0, 0, 0]\n"
-                          "          orientation: [0, 0, 0, 1]\n";
-  const std::string msg = thrownMessage<dss::SceneError>(
-      [&] { dss::parsePlanningSceneYaml(bad, "/tmp/ghost.yaml"); });
+  const std::string bad =
+      "world:\n  collision_objects:\n    - id: ghost\n      meshes:\n"
+      "        - resource: package://nowhere/x.stl\n"
+      "      mesh_poses:\n        - position: [0, 0, 0]\n"
+      "          orientation: [0, 0, 0, 1]\n";
+  const std::string msg =
+      thrownMessage<dss::SceneError>([&] { dss::parsePlanningSceneYaml(bad, "/tmp/ghost.yaml"); });
   BOOST_TEST(contains(msg, "package://nowhere/x.stl"));
   BOOST_TEST(contains(msg, "'ghost'"));
   BOOST_TEST(contains(msg, "/tmp/ghost.yaml:"));
@@ -232,7 +237,8 @@ BOOST_AUTO_TEST_CASE(mesh_by_resource) {
 
 BOOST_AUTO_TEST_CASE(bad_input_names_file_line_and_object) {
   const std::string head = "world:\n  collision_objects:\n    - id: Crate\n";
-  const std::string prims = "      primitives:\n        - type: box\n          dimensions: [1, 1, 1]\n";
+  const std::string prims =
+      "      primitives:\n        - type: box\n          dimensions: [1, 1, 1]\n";
   const std::string poses =
       "      primitive_poses:\n        - position: [0, 0, 0]\n          orientation: ";
   auto msgOf = [](const std::string& text) {
@@ -283,8 +289,7 @@ BOOST_AUTO_TEST_CASE(bad_input_names_file_line_and_object) {
   m = msgOf(head + "      planes:\n        - coef: [0, 0, 1, 0]\n      plane_poses: []\n");
   BOOST_TEST(contains(m, "planes"));
   // A missing file.
-  m = thrownMessage<dss::SceneError>(
-      [] { dss::loadPlanningSceneYaml("/nonexistent/scene.yaml"); });
+  m = thrownMessage<dss::SceneError>([] { dss::loadPlanningSceneYaml("/nonexistent/scene.yaml"); });
   BOOST_TEST(contains(m, "/nonexistent/scene.yaml"));
 }
 

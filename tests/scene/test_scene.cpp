@@ -1,7 +1,6 @@
 // Scene data: world bounding boxes of every shape type and the allowed collision matrix.
-#include <cmath>
-
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 
 #include "dss/scene/scene.h"
 

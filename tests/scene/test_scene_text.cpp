@@ -1,10 +1,9 @@
 // MoveIt .scene text: the shared files in both formats, object poses in the new format,
 // meshes, and errors with line numbers.
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <map>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/scene/scene_error.h"
 #include "dss/scene/scene_loader.h"
@@ -19,10 +18,14 @@ BOOST_AUTO_TEST_CASE(shared_scene_files_load) {
   if (skipWithoutShared()) return;
   // file -> (obstacles, objects); MANIFEST.md of the shared scenes.
   const std::map<std::string, std::pair<int, int>> expected = {
-      {"example_box.scene", {1, 1}},       {"example_distance.scene", {1, 1}},
-      {"example_manipulate.scene", {3, 3}}, {"example_moving_obstacle.scene", {1, 1}},
-      {"g03_open_back_storage_shelf.scene", {8, 1}}, {"kallax.scene", {8, 1}},
-      {"baxter_pillar.scene", {1, 1}},     {"publish_scene.scene", {1, 1}}};
+      {"example_box.scene", {1, 1}},
+      {"example_distance.scene", {1, 1}},
+      {"example_manipulate.scene", {3, 3}},
+      {"example_moving_obstacle.scene", {1, 1}},
+      {"g03_open_back_storage_shelf.scene", {8, 1}},
+      {"kallax.scene", {8, 1}},
+      {"baxter_pillar.scene", {1, 1}},
+      {"publish_scene.scene", {1, 1}}};
   const auto files = filesMatching(scenesDir() + "/moveit_scene_files", ".*\\.scene");
   BOOST_TEST(files.size() == expected.size());
   for (const auto& f : files) {
@@ -40,7 +43,8 @@ BOOST_AUTO_TEST_CASE(shared_scene_files_load) {
 
 BOOST_AUTO_TEST_CASE(old_format_details) {
   if (skipWithoutShared()) return;
-  const dss::Scene s = dss::loadSceneText(scenesDir() + "/moveit_scene_files/exotica/example_box.scene");
+  const dss::Scene s =
+      dss::loadSceneText(scenesDir() + "/moveit_scene_files/exotica/example_box.scene");
   BOOST_TEST(s.name == "ExampleScene");
   BOOST_REQUIRE(s.obstacles.size() == 1u);
   // Quaternion (0, 0, 0.968912, -0.247404), normalised: a rotation about z.

@@ -1,10 +1,9 @@
 // A URDF as a world: the MotionBenchMaker kitchen (5 mesh links, 3 revolute doors held at 0),
 // its package:// original, the joint policy, and malformed XML.
+#include <boost/test/unit_test.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
-#include <boost/test/unit_test.hpp>
 
 #include "dss/scene/scene_error.h"
 #include "dss/scene/scene_loader.h"
@@ -38,8 +37,7 @@ BOOST_AUTO_TEST_CASE(kitchen_loads) {
   // cupboard_door_l sits at its joint origin (door joint at 0).
   for (const auto& o : s.obstacles)
     if (o.name == "cupboard_door_l")
-      BOOST_TEST((o.X_WO.translation() - Eigen::Vector3d(0.44637, 0.54793, 1.6839)).norm() <
-                 1e-12);
+      BOOST_TEST((o.X_WO.translation() - Eigen::Vector3d(0.44637, 0.54793, 1.6839)).norm() < 1e-12);
 
   // The original, with package:// URIs, through a package directory.
   dss::SceneLoadOptions opt;
@@ -63,9 +61,9 @@ BOOST_AUTO_TEST_CASE(kitchen_joint_policy) {
   const dss::Scene s = dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", open);
   for (const auto& o : s.obstacles)
     if (o.name == "cupboard_door_l")
-      BOOST_TEST((o.X_WO.linear() -
-                  Eigen::AngleAxisd(-1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix())
-                     .norm() < 1e-12);
+      BOOST_TEST(
+          (o.X_WO.linear() - Eigen::AngleAxisd(-1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix())
+              .norm() < 1e-12);
   dss::SceneLoadOptions typo;
   typo.joint_values["no_such_joint"] = 0.0;
   m = thrownMessage<dss::SceneError>(
@@ -94,8 +92,9 @@ BOOST_AUTO_TEST_CASE(primitives_and_errors) {
   BOOST_TEST(s.obstacles[2].name == "post");
   BOOST_TEST(s.obstacles[2].X_WO.translation().x() == 3.0);
 
-  const std::string broken = writeTemp("dss_scene_world_broken.urdf",
-                                       "<robot name=\"w\">\n  <link name=\"a\">\n  </lnk>\n</robot>\n");
+  const std::string broken =
+      writeTemp("dss_scene_world_broken.urdf",
+                "<robot name=\"w\">\n  <link name=\"a\">\n  </lnk>\n</robot>\n");
   std::string m = thrownMessage<dss::SceneError>([&] { dss::loadUrdfWorld(broken); });
   BOOST_TEST(contains(m, broken + ":3"));
   BOOST_TEST(contains(m, "malformed XML"));

@@ -18,12 +18,15 @@ inline const std::string kArmDir = std::string(DSS_SOURCE_DIR) + "/robots/dss_ar
 inline const std::string kPandaDir = std::string(DSS_SHARED_DIR) + "/robots/panda";
 inline const std::string kMbmPanda = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda";
 
-inline dss::LoadedRobot loadArm() { return dss::loadRobot(kArmDir + "/dss_arm7.urdf", kArmDir + "/dss_arm7.srdf"); }
+inline dss::LoadedRobot loadArm() {
+  return dss::loadRobot(kArmDir + "/dss_arm7.urdf", kArmDir + "/dss_arm7.srdf");
+}
 
 /// Our arm in its shelf scene, with the shelf request's group and start state.
 inline dss::ModelSetup shelfSetup(const dss::LoadedRobot& robot) {
   const auto req = dss::loadPlanRequestYaml(kArmDir + "/scenes/shelf_request.yaml");
-  return dss::setupModel(robot, dss::loadScene(kArmDir + "/scenes/shelf.yaml"), req.group_name, req.startState());
+  return dss::setupModel(robot, dss::loadScene(kArmDir + "/scenes/shelf.yaml"), req.group_name,
+                         req.startState());
 }
 
 /// The lower and upper value a group joint is drawn from: its limits, [-pi, pi] for a

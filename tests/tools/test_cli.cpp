@@ -60,7 +60,8 @@ struct Outcome {
 std::string readFd(int fd) {
   std::string text;
   char buf[4096];
-  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) text.append(buf, static_cast<std::size_t>(n));
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
+    text.append(buf, static_cast<std::size_t>(n));
   ::close(fd);
   return text;
 }
@@ -102,11 +103,16 @@ Outcome parseInChild(std::initializer_list<const char*> args) {
     Argv a(args);
     ArgCursor cli(a.argc(), a.argv(), "prog", kUsage);
     while (cli.next()) {
-      if (cli.option("--x")) cli.number(0, 10);
-      else if (cli.option("--y")) cli.integer(1, 5);
-      else if (cli.flag("--flag")) continue;
-      else if (cli.positional("count")) cli.integer(1, kMaxLL);
-      else cli.unknown();
+      if (cli.option("--x"))
+        cli.number(0, 10);
+      else if (cli.option("--y"))
+        cli.integer(1, 5);
+      else if (cli.flag("--flag"))
+        continue;
+      else if (cli.positional("count"))
+        cli.integer(1, kMaxLL);
+      else
+        cli.unknown();
     }
   });
 }
@@ -124,8 +130,8 @@ BOOST_AUTO_TEST_SUITE(cli_numbers)
 
 BOOST_AUTO_TEST_CASE(decimal_numbers_are_read_whole) {
   const std::vector<std::pair<const char*, double>> good = {
-      {"1", 1.0},     {"-2.5", -2.5}, {"+3", 3.0},     {"1e3", 1000.0},     {".5", 0.5},
-      {"5.", 5.0},    {"1E-3", 1e-3}, {"0", 0.0},      {"0.1", 0.1},        {"007", 7.0},
+      {"1", 1.0},       {"-2.5", -2.5}, {"+3", 3.0}, {"1e3", 1000.0}, {".5", 0.5},
+      {"5.", 5.0},      {"1E-3", 1e-3}, {"0", 0.0},  {"0.1", 0.1},    {"007", 7.0},
       {"1e308", 1e308}, {"1e-400", 0.0}};  // below the subnormals: rounds to zero
   for (const auto& [text, value] : good) {
     const auto x = parseNumber(text, kLowest, kHighest);
@@ -139,9 +145,10 @@ BOOST_AUTO_TEST_CASE(decimal_numbers_are_read_whole) {
 BOOST_AUTO_TEST_CASE(anything_but_one_finite_decimal_number_is_rejected) {
   // Hexadecimal is rejected on purpose: strtod would read "0x10" as 16, but on a command
   // line it is far more likely a typo than an intended hex float.
-  for (const char* text : {"", " ", " 1", "1 ", "1\n", "1e", "1e+", "1x", "10x", "x", "-", "+", ".", "1..2",
-                           "1,5", "--1", "nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "INF", "infinity",
-                           "0x10", "0X10", "-0x10", "0x1p3", "1e999", "-1e999"})
+  for (const char* text :
+       {"",    " ",    " 1",  "1 ",       "1\n",  "1e",   "1e+",   "1x",    "10x",   "x",
+        "-",   "+",    ".",   "1..2",     "1,5",  "--1",  "nan",   "NaN",   "-nan",  "nan(1)",
+        "inf", "-inf", "INF", "infinity", "0x10", "0X10", "-0x10", "0x1p3", "1e999", "-1e999"})
     BOOST_CHECK_MESSAGE(!parseNumber(text, kLowest, kHighest), "'" << text << "' accepted");
 }
 
@@ -163,9 +170,9 @@ BOOST_AUTO_TEST_CASE(integers_are_signed_decimal_digits_only) {
   BOOST_CHECK_EQUAL(*parseInteger("010", kMinLL, kMaxLL), 10);  // decimal, not octal
   BOOST_CHECK_EQUAL(*parseInteger("9223372036854775807", kMinLL, kMaxLL), kMaxLL);
   BOOST_CHECK_EQUAL(*parseInteger("-9223372036854775808", kMinLL, kMaxLL), kMinLL);
-  for (const char* text : {"", "+", "-", " 1", "1 ", "1e3", "1.0", "1.", "0x10", "10x", "x", "nan", "inf",
-                           "--1", "+-1", "1_000", "9223372036854775808", "-9223372036854775809",
-                           "99999999999999999999"})
+  for (const char* text :
+       {"", "+", "-", " 1", "1 ", "1e3", "1.0", "1.", "0x10", "10x", "x", "nan", "inf", "--1",
+        "+-1", "1_000", "9223372036854775808", "-9223372036854775809", "99999999999999999999"})
     BOOST_CHECK_MESSAGE(!parseInteger(text, kMinLL, kMaxLL), "'" << text << "' accepted");
 }
 
@@ -182,7 +189,8 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(cli_cursor)
 
 BOOST_AUTO_TEST_CASE(options_flags_and_positionals) {
-  Argv a({"--x=1.5", "--y", "2", "--flag", "file", "-", "-5", "--name=a=b", "--empty=", "--", "--x", "-h"});
+  Argv a({"--x=1.5", "--y", "2", "--flag", "file", "-", "-5", "--name=a=b", "--empty=", "--", "--x",
+          "-h"});
   ArgCursor cli(a.argc(), a.argv(), "prog", kUsage);
   BOOST_REQUIRE(cli.next());
   BOOST_CHECK(!cli.option("--y"));
@@ -247,13 +255,17 @@ BOOST_AUTO_TEST_CASE(usage_errors_name_the_option_and_the_text) {
   checkUsageError(parseInChild({"--bogus"}), "unknown option --bogus");
   checkUsageError(parseInChild({"--bogus=3"}), "unknown option --bogus");
   checkUsageError(parseInChild({"-q"}), "unknown option -q");
-  checkUsageError(parseInChild({"--x", "1e"}), "--x: expected a finite number in [0, 10], got '1e'");
+  checkUsageError(parseInChild({"--x", "1e"}),
+                  "--x: expected a finite number in [0, 10], got '1e'");
   checkUsageError(parseInChild({"--x=nan"}), "--x: expected a finite number in [0, 10], got 'nan'");
   checkUsageError(parseInChild({"--x=inf"}), "--x: expected a finite number in [0, 10], got 'inf'");
-  checkUsageError(parseInChild({"--x=0x10"}), "--x: expected a finite number in [0, 10], got '0x10'");
+  checkUsageError(parseInChild({"--x=0x10"}),
+                  "--x: expected a finite number in [0, 10], got '0x10'");
   checkUsageError(parseInChild({"--x="}), "--x: expected a finite number in [0, 10], got ''");
-  checkUsageError(parseInChild({"--x", "-1"}), "--x: expected a finite number in [0, 10], got '-1'");
-  checkUsageError(parseInChild({"--x", "11"}), "--x: expected a finite number in [0, 10], got '11'");
+  checkUsageError(parseInChild({"--x", "-1"}),
+                  "--x: expected a finite number in [0, 10], got '-1'");
+  checkUsageError(parseInChild({"--x", "11"}),
+                  "--x: expected a finite number in [0, 10], got '11'");
   checkUsageError(parseInChild({"--y", "0"}), "--y: expected an integer in [1, 5], got '0'");
   checkUsageError(parseInChild({"--y", "2.0"}), "--y: expected an integer in [1, 5], got '2.0'");
   checkUsageError(parseInChild({"10x"}), "count: expected an integer >= 1, got '10x'");
@@ -314,7 +326,8 @@ Outcome runTool(const std::string& name, const std::vector<std::string>& args) {
 }
 
 /// `name args` fails as a usage error whose message contains `part`.
-void checkToolUsageError(const std::string& name, const std::vector<std::string>& args, const std::string& part) {
+void checkToolUsageError(const std::string& name, const std::vector<std::string>& args,
+                         const std::string& part) {
   std::string shown = name;
   for (const std::string& a : args) shown += " " + a;
   const Outcome o = runTool(name, args);
@@ -331,22 +344,27 @@ void checkToolUsageError(const std::string& name, const std::vector<std::string>
 BOOST_AUTO_TEST_SUITE(cli_executables)
 
 BOOST_AUTO_TEST_CASE(every_executable_has_help) {
-  for (const std::string name :
-       {"dss_check", "dss_pairs", "dss_disabled_pairs", "dss_robot_timing", "dss_scene_timing", "dss_plan"}) {
+  for (const std::string name : {"dss_check", "dss_pairs", "dss_disabled_pairs", "dss_robot_timing",
+                                 "dss_scene_timing", "dss_plan"}) {
     const Outcome o = runTool(name, {"--help"});
     BOOST_CHECK_MESSAGE(o.exit_code == 0, name << " --help: exit " << o.exit_code);
-    BOOST_CHECK_MESSAGE(o.out.rfind("usage: " + name, 0) == 0, name << " --help: '" << o.out << "'");
+    BOOST_CHECK_MESSAGE(o.out.rfind("usage: " + name, 0) == 0,
+                        name << " --help: '" << o.out << "'");
   }
 }
 
 BOOST_AUTO_TEST_CASE(dss_disabled_pairs_reads_samples_and_seed_strictly) {
-  checkToolUsageError("dss_disabled_pairs", {kArm, "10x"}, "samples: expected an integer in [1, 2147483647], got '10x'");
+  checkToolUsageError("dss_disabled_pairs", {kArm, "10x"},
+                      "samples: expected an integer in [1, 2147483647], got '10x'");
   checkToolUsageError("dss_disabled_pairs", {kArm, "0"}, "samples: expected an integer");
   checkToolUsageError("dss_disabled_pairs", {kArm, "1e4"}, "got '1e4'");
-  checkToolUsageError("dss_disabled_pairs", {kArm, "10", "-1"}, "seed: expected an integer >= 0, got '-1'");
-  checkToolUsageError("dss_disabled_pairs", {kArm, "10", "1", "extra"}, "unexpected argument 'extra'");
+  checkToolUsageError("dss_disabled_pairs", {kArm, "10", "-1"},
+                      "seed: expected an integer >= 0, got '-1'");
+  checkToolUsageError("dss_disabled_pairs", {kArm, "10", "1", "extra"},
+                      "unexpected argument 'extra'");
   checkToolUsageError("dss_disabled_pairs", {kArm, "--package"}, "--package needs a value");
-  checkToolUsageError("dss_disabled_pairs", {kArm, "--package", "nodir"}, "--package: expected name=dir");
+  checkToolUsageError("dss_disabled_pairs", {kArm, "--package", "nodir"},
+                      "--package: expected name=dir");
   checkToolUsageError("dss_disabled_pairs", {kArm, "--samples=5"}, "unknown option --samples");
   checkToolUsageError("dss_disabled_pairs", {}, "no robot.urdf");
   // A runtime error keeps exit code 1.
@@ -354,32 +372,41 @@ BOOST_AUTO_TEST_CASE(dss_disabled_pairs_reads_samples_and_seed_strictly) {
 }
 
 BOOST_AUTO_TEST_CASE(timing_tools_read_numbers_strictly) {
-  checkToolUsageError("dss_robot_timing", {kArm, "1e6"}, "states: expected an integer in [1, 2147483647], got '1e6'");
+  checkToolUsageError("dss_robot_timing", {kArm, "1e6"},
+                      "states: expected an integer in [1, 2147483647], got '1e6'");
   checkToolUsageError("dss_robot_timing", {kArm, "0"}, "states");
   checkToolUsageError("dss_robot_timing", {kArm, "10", "more"}, "unexpected argument 'more'");
   checkToolUsageError("dss_robot_timing", {"--states", "10"}, "unknown option --states");
   BOOST_CHECK_EQUAL(runTool("dss_robot_timing", {"/no/such/robot.urdf", "10"}).exit_code, 1);
-  checkToolUsageError("dss_scene_timing", {"--repeats", "0", "x.yaml"}, "--repeats: expected an integer in [1, 1000000], got '0'");
+  checkToolUsageError("dss_scene_timing", {"--repeats", "0", "x.yaml"},
+                      "--repeats: expected an integer in [1, 1000000], got '0'");
   checkToolUsageError("dss_scene_timing", {"--repeats=3x", "x.yaml"}, "got '3x'");
   checkToolUsageError("dss_scene_timing", {"--repeats"}, "--repeats needs a value");
   checkToolUsageError("dss_scene_timing", {"--bogus", "x.yaml"}, "unknown option --bogus");
   checkToolUsageError("dss_scene_timing", {}, "no scene file");
-  BOOST_CHECK_EQUAL(runTool("dss_scene_timing", {"--repeats", "1", "/no/such/scene.yaml"}).exit_code, 1);
+  BOOST_CHECK_EQUAL(
+      runTool("dss_scene_timing", {"--repeats", "1", "/no/such/scene.yaml"}).exit_code, 1);
 }
 
 BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
-  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "1e"}, "--random: expected an integer in [1, 1000000000], got '1e'");
-  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--padding", "nan"}, "--padding");
-  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--threads", "0"}, "--threads");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "1e"},
+                      "--random: expected an integer in [1, 1000000000], got '1e'");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--padding", "nan"},
+                      "--padding");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--threads", "0"},
+                      "--threads");
   checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--seed", "-1"}, "--seed");
   checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--mode", "quad"}, "--mode");
-  checkToolUsageError("dss_check", {"--robot", kArm, "--describe=yes"}, "--describe takes no value");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--describe=yes"},
+                      "--describe takes no value");
   checkToolUsageError("dss_check", {"--robot", kArm, "--bogus"}, "unknown option --bogus");
   checkToolUsageError("dss_check", {"--random", "10"}, "--robot is required");
   checkToolUsageError("dss_check", {"--robot", kArm}, "--states or --random is required");
-  BOOST_CHECK_EQUAL(runTool("dss_check", {"--robot", "/no/such/robot.urdf", "--random", "10"}).exit_code, 1);
+  BOOST_CHECK_EQUAL(
+      runTool("dss_check", {"--robot", "/no/such/robot.urdf", "--random", "10"}).exit_code, 1);
 
-  checkToolUsageError("dss_plan", {"--seed", "-1"}, "--seed: expected an integer in [0, 4294967295], got '-1'");
+  checkToolUsageError("dss_plan", {"--seed", "-1"},
+                      "--seed: expected an integer in [0, 4294967295], got '-1'");
   checkToolUsageError("dss_plan", {"--time", "inf"}, "--time");
   checkToolUsageError("dss_plan", {"--runs", "2x", "--benchmark"}, "--runs");
   checkToolUsageError("dss_plan", {"--planner", "RRTX"}, "unknown planner 'RRTX'");
@@ -387,10 +414,13 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_plan", {"--bogus"}, "unknown option --bogus");
   checkToolUsageError("dss_plan", {"extra"}, "unexpected argument 'extra'");
   BOOST_CHECK_EQUAL(
-      runTool("dss_plan", {"--robot", "/no/such/robot.urdf", "--request", "/no/such/request.yaml"}).exit_code, 1);
+      runTool("dss_plan", {"--robot", "/no/such/robot.urdf", "--request", "/no/such/request.yaml"})
+          .exit_code,
+      1);
 
   checkToolUsageError("dss_pairs", {"--repeat", "0x", "-"}, "--repeat: expected an integer");
-  checkToolUsageError("dss_pairs", {"--padding", "1e", "-"}, "--padding: expected a finite number >= 0, got '1e'");
+  checkToolUsageError("dss_pairs", {"--padding", "1e", "-"},
+                      "--padding: expected a finite number >= 0, got '1e'");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -73,8 +73,8 @@ BOOST_GLOBAL_FIXTURE(ScratchCleanup);
 Run runTool(const std::string& args, const std::string& stdin_file = "/dev/null") {
   const fs::path out = scratchDir() / "out.txt", err = scratchDir() / "err.txt";
   // A hang in a decision (a core bug) fails the run with exit code 124 instead of stalling.
-  const std::string cmd = "timeout 120 " + quote(kTool) + " " + args + " < " + quote(stdin_file) + " > " +
-                          quote(out.string()) + " 2> " + quote(err.string());
+  const std::string cmd = "timeout 120 " + quote(kTool) + " " + args + " < " + quote(stdin_file) +
+                          " > " + quote(out.string()) + " 2> " + quote(err.string());
   const int status = std::system(cmd.c_str());
   Run r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -122,8 +122,8 @@ TierCounts runSamples(const std::string& algo, const std::string& mode) {
       if (wrong) {
         ++c.wrong[tier];
         BOOST_TEST_MESSAGE("  " << algo << "/" << mode << " wrong: " << want.at("id") << " "
-                                << want.at("category") << " expected "
-                                << want.at("intersect") << " got " << got[i]);
+                                << want.at("category") << " expected " << want.at("intersect")
+                                << " got " << got[i]);
       }
       c.caps[tier] += have.at("status") == "iteration_limit";
     }
@@ -204,43 +204,56 @@ BOOST_AUTO_TEST_CASE(malformed_lines_stop_with_exit_2_and_the_line) {
   const std::vector<Case> cases = {
       {"bad_json", R"({"id":"x","a":{"type":"sphere","radius":1},)", "bad JSON"},
       {"not_object", R"([1,2,3])", "expected a JSON object"},
-      {"unknown_type", R"({"id":"x","a":{"type":"torus","radius":1},"b":{"type":"sphere","radius":1}})",
+      {"unknown_type",
+       R"({"id":"x","a":{"type":"torus","radius":1},"b":{"type":"sphere","radius":1}})",
        "unknown shape type \"torus\""},
       {"missing_b", R"({"id":"x","a":{"type":"sphere","radius":1}})", "missing field \"b\""},
       {"missing_id", R"({"a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1}})",
        "missing field \"id\""},
       {"missing_size", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"box"}})",
        "b: missing field \"size\""},
-      {"missing_length", R"({"id":"x","a":{"type":"cone","radius":1},"b":{"type":"sphere","radius":1}})",
+      {"missing_length",
+       R"({"id":"x","a":{"type":"cone","radius":1},"b":{"type":"sphere","radius":1}})",
        "a: missing field \"length\""},
-      {"negative_radius", R"({"id":"x","a":{"type":"sphere","radius":-1},"b":{"type":"sphere","radius":1}})",
+      {"negative_radius",
+       R"({"id":"x","a":{"type":"sphere","radius":-1},"b":{"type":"sphere","radius":1}})",
        "a.radius: negative size"},
-      {"negative_box", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"box","size":[1,-2,1]}})",
+      {"negative_box",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"box","size":[1,-2,1]}})",
        "b.size: negative size"},
-      {"negative_radii", R"({"id":"x","a":{"type":"ellipsoid","radii":[1,1,-0.5]},"b":{"type":"sphere","radius":1}})",
+      {"negative_radii",
+       R"({"id":"x","a":{"type":"ellipsoid","radii":[1,1,-0.5]},"b":{"type":"sphere","radius":1}})",
        "a.radii: negative size"},
-      {"overflow_number", R"({"id":"x","a":{"type":"sphere","radius":1e999},"b":{"type":"sphere","radius":1}})",
+      {"overflow_number",
+       R"({"id":"x","a":{"type":"sphere","radius":1e999},"b":{"type":"sphere","radius":1}})",
        "overflow"},
-      {"string_size", R"({"id":"x","a":{"type":"capsule","radius":"1","length":1},"b":{"type":"sphere","radius":1}})",
+      {"string_size",
+       R"({"id":"x","a":{"type":"capsule","radius":"1","length":1},"b":{"type":"sphere","radius":1}})",
        "a.radius: expected a number"},
-      {"short_size", R"({"id":"x","a":{"type":"box","size":[1,1]},"b":{"type":"sphere","radius":1}})",
+      {"short_size",
+       R"({"id":"x","a":{"type":"box","size":[1,1]},"b":{"type":"sphere","radius":1}})",
        "a.size: expected an array of 3 numbers"},
-      {"empty_vertices", R"({"id":"x","a":{"type":"convex","vertices":[]},"b":{"type":"sphere","radius":1}})",
+      {"empty_vertices",
+       R"({"id":"x","a":{"type":"convex","vertices":[]},"b":{"type":"sphere","radius":1}})",
        "a.vertices: empty vertex list"},
-      {"bad_vertex", R"({"id":"x","a":{"type":"convex","vertices":[[0,0,0],[1,2]]},"b":{"type":"sphere","radius":1}})",
+      {"bad_vertex",
+       R"({"id":"x","a":{"type":"convex","vertices":[[0,0,0],[1,2]]},"b":{"type":"sphere","radius":1}})",
        "a.vertices[1]: expected an array of 3 numbers"},
-      {"zero_quaternion", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0],"orientation":[0,0,0,0]}}})",
+      {"zero_quaternion",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0],"orientation":[0,0,0,0]}}})",
        "b.pose.orientation: zero quaternion"},
-      {"missing_orientation", R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0]}}})",
+      {"missing_orientation",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0]}}})",
        "b.pose: missing field \"orientation\""},
-      {"non_finite_posed_vertex", R"({"id":"x","a":{"type":"convex","vertices":[[1e308,0,0]],"pose":{"position":[1e308,0,0],"orientation":[0,0,0,1]}},"b":{"type":"sphere","radius":1}})",
+      {"non_finite_posed_vertex",
+       R"({"id":"x","a":{"type":"convex","vertices":[[1e308,0,0]],"pose":{"position":[1e308,0,0],"orientation":[0,0,0,1]}},"b":{"type":"sphere","radius":1}})",
        "a.vertices: a posed vertex is not finite"},
       {"blank_line", "", "empty line"},
   };
   for (const Case& c : cases) {
     // The bad line is line 3 of 4.
-    const fs::path file =
-        writeFile(std::string(c.name) + ".jsonl", kGood + "\n" + kGood + "\n" + c.bad_line + "\n" + kGood + "\n");
+    const fs::path file = writeFile(std::string(c.name) + ".jsonl",
+                                    kGood + "\n" + kGood + "\n" + c.bad_line + "\n" + kGood + "\n");
     for (const std::string algo : {"dss", "fcl"}) {
       const Run r = runTool("--algo " + algo + " " + quote(file.string()));
       BOOST_CHECK_MESSAGE(r.exit_code == 2, c.name << " " << algo << ": exit " << r.exit_code);
@@ -356,8 +369,8 @@ BOOST_AUTO_TEST_CASE(padding_is_a_distance_query) {
     for (const std::string mode : {"exact", "double", "float"}) {
       for (const auto& [padding, expect] :
            std::vector<std::pair<std::string, bool>>{{"0", false}, {"0.9", false}, {"1.1", true}}) {
-        const Run r = runTool("--algo " + algo + " --mode " + mode + " --padding " + padding +
-                              " " + quote(file.string()));
+        const Run r = runTool("--algo " + algo + " --mode " + mode + " --padding " + padding + " " +
+                              quote(file.string()));
         BOOST_REQUIRE_EQUAL(r.exit_code, 0);
         for (const std::string& line : r.outLines())
           BOOST_CHECK_MESSAGE(Json::parse(line).at("intersect") == expect,
@@ -383,8 +396,8 @@ BOOST_AUTO_TEST_CASE(large_and_flat_convex_sets_agree_with_probes) {
   for (int i = 0; i < 80; ++i) {
     const double x = normal(rng), y = normal(rng), z = normal(rng);
     const double n = std::sqrt(x * x + y * y + z * z);
-    ball += (i ? "," : "") + std::string("[") + num(x / n) + "," + num(y / n) + "," +
-            num(z / n) + "]";
+    ball +=
+        (i ? "," : "") + std::string("[") + num(x / n) + "," + num(y / n) + "," + num(z / n) + "]";
   }
   for (int i = 0; i < 40; ++i) {
     const double t = 2 * M_PI * i / 40;
@@ -392,8 +405,7 @@ BOOST_AUTO_TEST_CASE(large_and_flat_convex_sets_agree_with_probes) {
   }
   ball += "]";
   disc += "]";
-  const std::string pose =
-      R"(,"pose":{"position":[0.25,-0.5,1],"orientation":[0.1,0.2,0.3,0.9]})";
+  const std::string pose = R"(,"pose":{"position":[0.25,-0.5,1],"orientation":[0.1,0.2,0.3,0.9]})";
   const Eigen::Quaterniond q = Eigen::Quaterniond(0.9, 0.1, 0.2, 0.3).normalized();
   std::string text;
   std::vector<bool> expect;

@@ -25,8 +25,11 @@ struct CheckerCounters {
 class CounterSlots {
  public:
   struct alignas(64) Slot {
-    std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0}, cap_hits{0};
-    void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) { c.fetch_add(n, std::memory_order_relaxed); }
+    std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0},
+        cap_hits{0};
+    void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) {
+      c.fetch_add(n, std::memory_order_relaxed);
+    }
   };
   /// This thread's slot.
   Slot& local() const {

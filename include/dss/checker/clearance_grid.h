@@ -31,8 +31,8 @@ class ClearanceGrid {
   ClearanceGrid() = default;
   /// Covers `region` with at most about `max_voxels` cubic voxels (never smaller than
   /// `min_voxel` m). An empty or non-finite region, or no boxes, gives an empty grid.
-  ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes, std::size_t max_voxels = std::size_t(1) << 16,
-                double min_voxel = 0.02);
+  ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
+                std::size_t max_voxels = std::size_t(1) << 16, double min_voxel = 0.02);
 
   /// True when every box is farther than r from c (proven; false when unknown).
   bool clear(const Eigen::Vector3d& c, double r) const {
@@ -56,7 +56,8 @@ class ClearanceGrid {
 #if defined(__SSE2__)
     return _mm_cvttsd_si32(_mm_set_sd(f));  // the x86 conversion, defined for every input
 #else
-    return f > -2147483648.0 && f < 2147483647.0 ? static_cast<int>(f) : std::numeric_limits<int>::min();
+    return f > -2147483648.0 && f < 2147483647.0 ? static_cast<int>(f)
+                                                 : std::numeric_limits<int>::min();
 #endif
   }
   /// The voxel holding c, or null outside the grid (and for NaN).

@@ -22,13 +22,12 @@
 // motion_bounds.h) or, for joints outside the group, at their held values.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/checker/clearance_grid.h"
 #include "dss/checker/obb.h"
@@ -67,9 +66,9 @@ class CollisionModel {
  public:
   /// One convex collision element of a link with geometry.
   struct Element {
-    int link = -1;                             ///< model link index
-    int slot = -1;                             ///< index into slots()
-    const CollisionElement* source = nullptr;  ///< in robot()
+    int link = -1;                                       ///< model link index
+    int slot = -1;                                       ///< index into slots()
+    const CollisionElement* source = nullptr;            ///< in robot()
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
     double radius = 0.0;
     /// The local box (element_bounds.h): the oriented-box stage of the sweep.

@@ -36,7 +36,8 @@ class ContinuousMotionChecker {
   /// `checker` supplies the model, the paddings and the mode (and checks midpoint states).
   /// `min_fraction` in (0, 1]: the smallest sub-motion before giving up. Throws
   /// std::invalid_argument otherwise.
-  explicit ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker, double min_fraction = 1.0 / 1024.0);
+  explicit ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker,
+                                   double min_fraction = 1.0 / 1024.0);
 
   /// True when the straight motion from q0 to q1 (active joint values) is free of collisions.
   /// Otherwise `last_valid_fraction` (optional) receives the start of the first sub-motion that
@@ -61,8 +62,8 @@ class ContinuousMotionChecker {
     int a = -1, b = -1;
     bool self = false;
   };
-  bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB, const double* pad,
-                 std::uint64_t* tests) const;
+  bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB,
+                 const double* pad, std::uint64_t* tests) const;
 
   std::shared_ptr<const DssChecker> checker_;
   double min_fraction_;

@@ -48,8 +48,8 @@ class DssChecker : public StateChecker {
  private:
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
-  bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip, double scene_padding,
-                  double self_padding) const;
+  bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,
+                  double scene_padding, double self_padding) const;
 
   Settings settings_;
 };

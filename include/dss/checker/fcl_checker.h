@@ -21,11 +21,11 @@
 // a pair collides when fcl::distance() <= padding.
 #pragma once
 
+#include <fcl/fcl.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fcl/fcl.h>
 
 #include "dss/checker/state_checker.h"
 
@@ -43,9 +43,11 @@ struct FclCheckerSettings {
 };
 
 /// FCL geometry for one shape (hull as Convex, or as a BVH of its facets when as_mesh).
-std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool as_mesh, const std::string& what);
+std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const AnyShape& shape, bool as_mesh,
+                                                     const std::string& what);
 /// A BVH model of a triangle mesh file at a scale.
-std::shared_ptr<fcl::CollisionGeometryd> fclMeshGeometry(const std::string& path, const Eigen::Vector3d& scale,
+std::shared_ptr<fcl::CollisionGeometryd> fclMeshGeometry(const std::string& path,
+                                                         const Eigen::Vector3d& scale,
                                                          const std::string& what);
 
 class FclChecker : public StateChecker {
@@ -54,18 +56,22 @@ class FclChecker : public StateChecker {
   FclChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings = {});
 
   StateVerdict check(const double* q) const override;
-  std::string name() const override { return settings_.geometry == FclGeometry::kHull ? "fcl-hull" : "fcl-mesh"; }
+  std::string name() const override {
+    return settings_.geometry == FclGeometry::kHull ? "fcl-hull" : "fcl-mesh";
+  }
   const Settings& settings() const { return settings_; }
   /// "fcl-aabb" or "dss-sweep".
-  std::string prefilterName() const { return settings_.prefilter == FclPrefilter::kAabb ? "fcl-aabb" : "dss-sweep"; }
+  std::string prefilterName() const {
+    return settings_.prefilter == FclPrefilter::kAabb ? "fcl-aabb" : "dss-sweep";
+  }
   static std::string solverDescription();
 
   const fcl::CollisionGeometryd* elementGeometry(int e) const { return elements_[e].get(); }
   const fcl::CollisionGeometryd* obstacleGeometry(int o) const { return obstacles_[o].get(); }
 
  private:
-  bool pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A, const fcl::CollisionGeometryd* b,
-            const Eigen::Isometry3d& X_B, double padding) const;
+  bool pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A,
+            const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& X_B, double padding) const;
   bool collidesAabb(const Eigen::Isometry3d* X_WL, std::uint64_t* tests) const;
 
   Settings settings_;

@@ -20,8 +20,8 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
 
 /// True when the ball (c, r) comes within `pad` of the box (rotation, centre, half extents),
 /// with a relative margin against rounding: a safe "colliding". NaN anywhere gives false.
-inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R, const Eigen::Vector3d& bc,
-                           const Eigen::Vector3d& h, double pad) {
+inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R,
+                           const Eigen::Vector3d& bc, const Eigen::Vector3d& h, double pad) {
   const Eigen::Vector3d t = c - bc;
   const Eigen::Vector3d p(R.col(0).dot(t), R.col(1).dot(t), R.col(2).dot(t));
   const double reach = r + pad - 1e-9 * (1.0 + t.cwiseAbs().sum() + h.sum() + r);

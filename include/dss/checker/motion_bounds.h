@@ -25,19 +25,21 @@ namespace dss {
 /// held value; a mimic joint moves through its leader (|multiplier| times the leader's travel
 /// plus |offset|). Infinity for an unbounded prismatic joint, 0 for every other joint.
 /// `held`: one value per active joint.
-double prismaticTravel(const RobotModel& robot, const RobotJoint& joint, const std::vector<double>& held);
+double prismaticTravel(const RobotModel& robot, const RobotJoint& joint,
+                       const std::vector<double>& held);
 
 /// A bound on the distance between the origins of `link` and of its ancestor `stop` (-1: the
 /// root) over every state: the sum of |X_PJ.t| plus travel of the joints in between.
-double originOffsetBound(const RobotModel& robot, int link, int stop, const std::vector<double>& held);
+double originOffsetBound(const RobotModel& robot, int link, int stop,
+                         const std::vector<double>& held);
 
 /// One non-fixed joint above a point set.
 struct ChainTerm {
-  int joint = -1;           ///< model joint index
-  int active = -1;          ///< the active joint whose value drives it (a mimic joint's leader); -1: none
+  int joint = -1;   ///< model joint index
+  int active = -1;  ///< the active joint whose value drives it (a mimic joint's leader); -1: none
   double multiplier = 1.0;  ///< of that value (a mimic joint's multiplier)
   bool prismatic = false;
-  double reach = 0.0;       ///< bound on the set's distance from the joint's origin
+  double reach = 0.0;  ///< bound on the set's distance from the joint's origin
 };
 
 /// The non-fixed joints from `link` up to `stop` (exclusive; -1: up to the root), for a point

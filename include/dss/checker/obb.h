@@ -2,9 +2,8 @@
 // element's local box, each obstacle's) that proves a pair apart before the narrow phase.
 #pragma once
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace dss {
 
@@ -18,8 +17,9 @@ struct Obb {
 /// Separating-axis test of two oriented boxes: true when one of the 15 axes separates them by
 /// more than `pad` plus a relative margin that covers the rounding of the test, so "true" is a
 /// safe "disjoint (distance > pad)". NaN anywhere gives false.
-inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca, const Eigen::Vector3d& ha,
-                     const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb, const Eigen::Vector3d& hb, double pad) {
+inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                     const Eigen::Vector3d& ha, const Eigen::Matrix3d& Rb,
+                     const Eigen::Vector3d& cb, const Eigen::Vector3d& hb, double pad) {
   const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
   const double margin = pad + 1e-9 * (ha.sum() + hb.sum() + t.cwiseAbs().sum()) + 1e-12;
   // B's axes first, each as soon as its column of R = Ra^T Rb is known: in the sweep B is the

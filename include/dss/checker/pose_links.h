@@ -5,9 +5,8 @@
 // instead of 10).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "dss/robot/kinematics.h"
 #include "dss/robot/robot_model.h"

@@ -96,9 +96,10 @@ struct SelfPairSide {
 /// most SelfPairTable::kMaxFixed held ones) with finite ranges and some cell could be decided;
 /// nullopt otherwise. `kin` computes the poses of both links; `in_group`: per active joint.
 std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& robot, const Kinematics& kin,
-                                                const std::vector<double>& held, const std::vector<char>& in_group,
-                                                const SelfPairSide& a, const SelfPairSide& b, int cells_1d,
-                                                int cells_2d, double padding);
+                                                const std::vector<double>& held,
+                                                const std::vector<char>& in_group,
+                                                const SelfPairSide& a, const SelfPairSide& b,
+                                                int cells_1d, int cells_2d, double padding);
 
 /// The tables of a model's self pairs, those on the same grid (e.g. the Panda's link5 against
 /// link7, the hand and the two fingers: joints 6 and 7) packed together, two bits per table in

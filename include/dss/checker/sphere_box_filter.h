@@ -3,13 +3,12 @@
 // (lower x, y, z, upper x, y, z), padded to an even count with empty boxes.
 #pragma once
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
-
-#include <Eigen/Core>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -51,12 +50,13 @@ class BoxSoa {
     const __m128d zero = _mm_setzero_pd(), rr = _mm_set1_pd(r2);
     // max(0, t) keeps a NaN t (maxpd returns its second operand when one is NaN).
     auto axis = [&](const double* lo, const double* up, std::size_t i, __m128d ci) {
-      const __m128d d =
-          _mm_max_pd(_mm_sub_pd(ci, _mm_loadu_pd(up + i)), _mm_max_pd(zero, _mm_sub_pd(_mm_loadu_pd(lo + i), ci)));
+      const __m128d d = _mm_max_pd(_mm_sub_pd(ci, _mm_loadu_pd(up + i)),
+                                   _mm_max_pd(zero, _mm_sub_pd(_mm_loadu_pd(lo + i), ci)));
       return _mm_mul_pd(d, d);
     };
     for (std::size_t i = 0; i < n; i += 2) {
-      const __m128d d2 = _mm_add_pd(_mm_add_pd(axis(lx, ux, i, cx), axis(ly, uy, i, cy)), axis(lz, uz, i, cz));
+      const __m128d d2 =
+          _mm_add_pd(_mm_add_pd(axis(lx, ux, i, cx), axis(ly, uy, i, cy)), axis(lz, uz, i, cz));
       hits |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmpngt_pd(d2, rr))) << i;
     }
     return hits & (n == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << n) - 1);

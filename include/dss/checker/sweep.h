@@ -12,11 +12,10 @@
 // apart (beyond the padding) and reports a collision only when one is proved.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/checker/collision_model.h"
 #include "dss/checker/inner_balls.h"
@@ -47,8 +46,9 @@ enum class SweepPoses {
 /// `table_skip`: one flag per self-pair table (SelfPairTables::read for the state): a flagged
 /// table's pair is certified free and skipped.
 template <SweepPoses kPoses, class SceneNarrow, class SelfNarrow>
-bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const unsigned char* table_skip,
-           const SweepOptions& opt, SceneNarrow&& scene, SelfNarrow&& self);
+bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL,
+           const unsigned char* table_skip, const SweepOptions& opt, SceneNarrow&& scene,
+           SelfNarrow&& self);
 
 /// The whole check of one state q (active joint values) with the link poses of
 /// model.kinematics() in X_WL: the tables first, then the sweep. (Checkers do the same with the
@@ -83,8 +83,12 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   using Element = CollisionModel::Element;
   constexpr bool kFolded = kPoses == SweepPoses::kPoseLinks;
   auto linkOf = [](const Slot& s) { return kFolded ? s.pose_link : s.link; };
-  auto slotCenter = [](const Slot& s) -> const Eigen::Vector3d& { return kFolded ? s.center_P : s.center_L; };
-  auto elementCenter = [](const Element& e) -> const Eigen::Vector3d& { return kFolded ? e.center_P : e.center_L; };
+  auto slotCenter = [](const Slot& s) -> const Eigen::Vector3d& {
+    return kFolded ? s.center_P : s.center_L;
+  };
+  auto elementCenter = [](const Element& e) -> const Eigen::Vector3d& {
+    return kFolded ? e.center_P : e.center_L;
+  };
   const double scene_padding = opt.scene_padding, self_padding = opt.self_padding;
   const std::vector<Element>& elements = model.elements();
   const std::vector<Aabb>& boxes = model.obstacleBoxes();
@@ -126,7 +130,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
           const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
           if (opt.obb_stage) {
             const Obb& ob = obbs[o];
-            if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h, scene_padding))
+            if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
+                         scene_padding))
               continue;
           }
           if (opt.inner_balls && el.num_inner > 0) {
@@ -134,7 +139,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
             if (half.x() >= 0.0) {
               const Obb& ob = obbs[o];
               for (int b = 0; b < el.num_inner; ++b)
-                if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half, scene_padding))
+                if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c,
+                                   half, scene_padding))
                   return true;
             }
           }
@@ -150,7 +156,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const double r = blk.radius + slots[blk.a].radius + self_padding;
       if ((centers[blk.a] - X_WL[blk.anchor].translation()).squaredNorm() > r * r) continue;
     }
-    for (const CollisionModel::SelfPair* pair = pairs + blk.begin; pair != pairs + blk.end; ++pair) {
+    for (const CollisionModel::SelfPair* pair = pairs + blk.begin; pair != pairs + blk.end;
+         ++pair) {
       const CollisionModel::SelfPair& p = *pair;
       if (p.table >= 0 && skip[p.table]) continue;
       const double r = p.radius_sum + self_padding;
@@ -172,8 +179,9 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
           }
           Eigen::Isometry3d X_prod_b;
           const Eigen::Isometry3d& X_WB = detail::placedShape<kPoses>(XB, b, X_prod_b);
-          if (opt.obb_stage && obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
-                                        X_WB * b.box_center_S, b.box_half, self_padding))
+          if (opt.obb_stage &&
+              obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
+                       X_WB * b.box_center_S, b.box_half, self_padding))
             continue;
           if (self(ea, X_WA, eb, X_WB)) return true;
         }

@@ -17,6 +17,7 @@ Result intersectGjk(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyS
 
 /// Hybrid: four GJK-directed steps, then DSS on the polygon they built (in every mode).
 Result intersectHybrid(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
-                       const Eigen::Isometry3d& X_WB, const Options& opt = {}, double padding = 0.0);
+                       const Eigen::Isometry3d& X_WB, const Options& opt = {},
+                       double padding = 0.0);
 
 }  // namespace dss

@@ -13,8 +13,8 @@ namespace dss {
 using AnyShape = std::variant<Sphere, Box, Capsule, Cylinder, Cone, Ellipsoid, ConvexHull>;
 
 inline const char* shapeTypeName(const AnyShape& s) {
-  static constexpr const char* kNames[] = {"sphere", "box", "capsule", "cylinder",
-                                           "cone", "ellipsoid", "convex"};
+  static constexpr const char* kNames[] = {"sphere", "box",       "capsule", "cylinder",
+                                           "cone",   "ellipsoid", "convex"};
   return kNames[s.index()];
 }
 

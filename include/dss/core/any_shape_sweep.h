@@ -12,12 +12,14 @@
 namespace dss {
 
 /// Does conv(X_WA0(a) U X_WA1(a)) grown by `padding` meet b at X_WB?
-Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1,
-                      double padding, const AnyShape& b, const Eigen::Isometry3d& X_WB, const Options& opt = {});
+Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0,
+                      const Eigen::Isometry3d& X_WA1, double padding, const AnyShape& b,
+                      const Eigen::Isometry3d& X_WB, const Options& opt = {});
 
 /// Does conv(X_WA0(a) U X_WA1(a)) grown by `padding` meet conv(X_WB0(b) U X_WB1(b))?
-Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0, const Eigen::Isometry3d& X_WA1,
-                      double padding, const AnyShape& b, const Eigen::Isometry3d& X_WB0,
-                      const Eigen::Isometry3d& X_WB1, const Options& opt = {});
+Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0,
+                      const Eigen::Isometry3d& X_WA1, double padding, const AnyShape& b,
+                      const Eigen::Isometry3d& X_WB0, const Eigen::Isometry3d& X_WB1,
+                      const Options& opt = {});
 
 }  // namespace dss

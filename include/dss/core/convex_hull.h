@@ -27,9 +27,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "dss/core/types.h"
@@ -43,7 +43,9 @@ namespace detail {
 
 #if defined(__SSE2__) || defined(_M_X64)
 template <class T>
-inline constexpr std::size_t kScanLanes = std::is_same<T, float>::value ? 4 : (std::is_same<T, double>::value ? 2 : 1);
+inline constexpr std::size_t kScanLanes = std::is_same<T, float>::value
+                                              ? 4
+                                              : (std::is_same<T, double>::value ? 2 : 1);
 #else
 template <class T>
 inline constexpr std::size_t kScanLanes = 1;
@@ -76,15 +78,17 @@ DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy,
   const double* y = x + stride;
   const double* z = y + stride;
   const __m128d DX = _mm_set1_pd(dx), DY = _mm_set1_pd(dy), DZ = _mm_set1_pd(dz);
-  __m128d best = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x), DX), _mm_mul_pd(_mm_loadu_pd(y), DY)),
-                            _mm_mul_pd(_mm_loadu_pd(z), DZ));
+  __m128d best =
+      _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x), DX), _mm_mul_pd(_mm_loadu_pd(y), DY)),
+                 _mm_mul_pd(_mm_loadu_pd(z), DZ));
   __m128d index = _mm_set_pd(1.0, 0.0);
   __m128d best_index = index;
   const __m128d two = _mm_set1_pd(2.0);
   for (int i = 2; i < stride; i += 2) {
     index = _mm_add_pd(index, two);
-    const __m128d v = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), DX), _mm_mul_pd(_mm_loadu_pd(y + i), DY)),
-                                 _mm_mul_pd(_mm_loadu_pd(z + i), DZ));
+    const __m128d v = _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), DX), _mm_mul_pd(_mm_loadu_pd(y + i), DY)),
+        _mm_mul_pd(_mm_loadu_pd(z + i), DZ));
     const __m128d gt = _mm_cmpgt_pd(v, best);
     best = _mm_max_pd(v, best);
     best_index = _mm_or_pd(_mm_and_pd(gt, index), _mm_andnot_pd(gt, best_index));
@@ -93,7 +97,8 @@ DSS_INLINE int scanSoa(const double* x, int stride, int n, double dx, double dy,
   const __m128d v1 = _mm_unpackhi_pd(best, best), i1 = _mm_unpackhi_pd(best_index, best_index);
   const __m128d take = _mm_or_pd(_mm_cmpgt_sd(v1, best),
                                  _mm_and_pd(_mm_cmpeq_sd(v1, best), _mm_cmplt_sd(i1, best_index)));
-  return static_cast<int>(_mm_cvtsd_f64(_mm_or_pd(_mm_and_pd(take, i1), _mm_andnot_pd(take, best_index))));
+  return static_cast<int>(
+      _mm_cvtsd_f64(_mm_or_pd(_mm_and_pd(take, i1), _mm_andnot_pd(take, best_index))));
 }
 
 DSS_INLINE int scanSoa(const float* x, int stride, int n, float dx, float dy, float dz) {
@@ -101,15 +106,17 @@ DSS_INLINE int scanSoa(const float* x, int stride, int n, float dx, float dy, fl
   const float* y = x + stride;
   const float* z = y + stride;
   const __m128 DX = _mm_set1_ps(dx), DY = _mm_set1_ps(dy), DZ = _mm_set1_ps(dz);
-  __m128 best = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x), DX), _mm_mul_ps(_mm_loadu_ps(y), DY)),
-                           _mm_mul_ps(_mm_loadu_ps(z), DZ));
+  __m128 best =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x), DX), _mm_mul_ps(_mm_loadu_ps(y), DY)),
+                 _mm_mul_ps(_mm_loadu_ps(z), DZ));
   __m128 index = _mm_set_ps(3.0f, 2.0f, 1.0f, 0.0f);
   __m128 best_index = index;
   const __m128 four = _mm_set1_ps(4.0f);
   for (int i = 4; i < stride; i += 4) {
     index = _mm_add_ps(index, four);
-    const __m128 v = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + i), DX), _mm_mul_ps(_mm_loadu_ps(y + i), DY)),
-                                _mm_mul_ps(_mm_loadu_ps(z + i), DZ));
+    const __m128 v = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + i), DX), _mm_mul_ps(_mm_loadu_ps(y + i), DY)),
+        _mm_mul_ps(_mm_loadu_ps(z + i), DZ));
     const __m128 gt = _mm_cmpgt_ps(v, best);
     best = _mm_max_ps(v, best);
     best_index = _mm_or_ps(_mm_and_ps(gt, index), _mm_andnot_ps(gt, best_index));
@@ -117,12 +124,14 @@ DSS_INLINE int scanSoa(const float* x, int stride, int n, float dx, float dy, fl
   // Pairwise reduction of the four lanes, without a branch: the larger value wins, and of
   // equal values the smaller index.
   auto reduce = [](__m128& v, __m128& i, __m128 v2, __m128 i2) {
-    const __m128 take = _mm_or_ps(_mm_cmpgt_ps(v2, v), _mm_and_ps(_mm_cmpeq_ps(v2, v), _mm_cmplt_ps(i2, i)));
+    const __m128 take =
+        _mm_or_ps(_mm_cmpgt_ps(v2, v), _mm_and_ps(_mm_cmpeq_ps(v2, v), _mm_cmplt_ps(i2, i)));
     v = _mm_or_ps(_mm_and_ps(take, v2), _mm_andnot_ps(take, v));
     i = _mm_or_ps(_mm_and_ps(take, i2), _mm_andnot_ps(take, i));
   };
   reduce(best, best_index, _mm_movehl_ps(best, best), _mm_movehl_ps(best_index, best_index));
-  reduce(best, best_index, _mm_shuffle_ps(best, best, 1), _mm_shuffle_ps(best_index, best_index, 1));
+  reduce(best, best_index, _mm_shuffle_ps(best, best, 1),
+         _mm_shuffle_ps(best_index, best_index, 1));
   return static_cast<int>(_mm_cvtss_f32(best_index));
 }
 #endif
@@ -167,17 +176,17 @@ class ConvexHullT {
   bool climbs() const { return climbs_; }
   /// Cube-map cells whose support vertex is certified (for tests and reports).
   std::size_t certifiedCells() const {
-    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c < 0; }));
+    return static_cast<std::size_t>(
+        std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c < 0; }));
   }
   /// Cube-map cells with too many candidates, which climb (for tests and reports).
   std::size_t climbingCells() const {
-    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(), [](int c) { return c >= 0 && (c & 0xff) == 0; }));
+    return static_cast<std::size_t>(std::count_if(seeds_.begin(), seeds_.end(),
+                                                  [](int c) { return c >= 0 && (c & 0xff) == 0; }));
   }
 
   /// Index of a point maximising d·x (the first of equal values in a linear scan).
-  DSS_INLINE int supportIndex(const Vec3<T>& d) const {
-    return climbs() ? climb(d) : scan(d);
-  }
+  DSS_INLINE int supportIndex(const Vec3<T>& d) const { return climbs() ? climb(d) : scan(d); }
   DSS_INLINE int scan(const Vec3<T>& d) const {
     // Coordinates are kept as separate arrays, padded to whole SIMD registers with copies of
     // the last point: this loop is the hottest of the library.
@@ -276,7 +285,9 @@ class ConvexHullT {
     for (int face = 0; face < 6; ++face)
       for (int i = 0; i < G; ++i)
         for (int j = 0; j < G; ++j) {
-          auto c = [&](int di, int dj) { return corner[(face * (G + 1) + i + di) * (G + 1) + j + dj]; };
+          auto c = [&](int di, int dj) {
+            return corner[(face * (G + 1) + i + di) * (G + 1) + j + dj];
+          };
           const int v = c(0, 0);
           int& cell = seeds_[(face * G + i) * G + j];
           if (v >= 0 && c(1, 0) == v && c(0, 1) == v && c(1, 1) == v) {
@@ -287,7 +298,8 @@ class ConvexHullT {
           // direction of the (slightly grown) cell; the maximiser of any direction in the cell
           // is among them. Over the cell d = c + (0, du, dw) in face coordinates with
           // |du|, |dw| <= 1/G, so max (x - b).d = (x - b).c + (|x_a - b_a| + |x_b - b_b|) / G.
-          const Vec3<T> centre = direction(face, T(-1) + T(2 * i + 1) / T(G), T(-1) + T(2 * j + 1) / T(G));
+          const Vec3<T> centre =
+              direction(face, T(-1) + T(2 * i + 1) / T(G), T(-1) + T(2 * j + 1) / T(G));
           const int b = scan(centre);
           const int k = face / 2, a1 = (k + 1) % 3, a2 = (k + 2) % 3;
           const T half = T(1.000001) / T(G);
@@ -304,7 +316,8 @@ class ConvexHullT {
             continue;
           }
           if (list.size() > kMaxCandidates) list.resize(1);  // rare: climb from b instead
-          cell = (static_cast<int>(candidates_.size()) << 8) | static_cast<int>(list.size() == 1 ? 0 : list.size());
+          cell = (static_cast<int>(candidates_.size()) << 8) |
+                 static_cast<int>(list.size() == 1 ? 0 : list.size());
           candidates_.insert(candidates_.end(), list.begin(), list.end());
         }
   }
@@ -368,15 +381,15 @@ class ConvexHullT {
   }
 
   std::vector<Vec3<T>> points_;
-  std::vector<T> soa_;          // x..., y..., z... of points_, each padded to stride_
+  std::vector<T> soa_;  // x..., y..., z... of points_, each padded to stride_
   int n_ = 0;
   int stride_ = 0;
   bool climbs_ = false;
-  std::vector<int> offsets_;    // CSR adjacency (empty: linear scan only)
+  std::vector<int> offsets_;  // CSR adjacency (empty: linear scan only)
   std::vector<int> adjacency_;
   Vec3<T> center_ = Vec3<T>::Zero();
   T magnitude_{0};
-  std::vector<int> seeds_;      // cube map (with adjacency only): -1 - vertex, or candidates
+  std::vector<int> seeds_;  // cube map (with adjacency only): -1 - vertex, or candidates
   // Candidate vertex lists of the uncertified cells (seeds_ holds offset << 8 | count).
   static constexpr std::size_t kMaxCandidates = 16;
   std::vector<int> candidates_;

@@ -65,8 +65,10 @@ struct Difference {
     sep_scale = W(0);
     if constexpr (!Exact) return;
     // 1-norms bound the distances without a square root on the query's critical path.
-    const Vec3d da = sa.anchor().template cast<double>() - c, db = sb.anchor().template cast<double>() - c;
-    const double mag = (double(sa.magnitude()) + double(sb.magnitude())) + (norm1_3(da) + norm1_3(db));
+    const Vec3d da = sa.anchor().template cast<double>() - c,
+                db = sb.anchor().template cast<double>() - c;
+    const double mag =
+        (double(sa.magnitude()) + double(sb.magnitude())) + (norm1_3(da) + norm1_3(db));
     // |x - c|_1 <= sqrt(3) |x - anchor| + |anchor - c|_1 for x in a shape; 2 leaves room for
     // the rounding of the support points.
     scale = W(2 * mag);
@@ -75,7 +77,8 @@ struct Difference {
     // 32 u covers them with margin for both shapes (float supports use float's u); the dot
     // product's rounding adds 4u |n|_1 |q|_1 <= 4u |n|_1 scale = 8u |n|_1 mag.
     constexpr double u = std::max(double(std::numeric_limits<SA>::epsilon()),
-                                  double(std::numeric_limits<SB>::epsilon())) / 2;
+                                  double(std::numeric_limits<SB>::epsilon())) /
+                         2;
     constexpr double kSep = 32 * u + 8 * (double(std::numeric_limits<W>::epsilon()) / 2);
     sep_scale = W(kSep * mag);
   }
@@ -152,8 +155,9 @@ template <class S>
 struct IsPosedBall : std::false_type {};
 template <class S>
 struct IsPosedBall<Posed<S>> {
-  static constexpr bool value = std::is_same<std::decay_t<decltype(unref(std::declval<const S&>()))>,
-                                             SphereT<ScalarOf<S>>>::value;
+  static constexpr bool value =
+      std::is_same<std::decay_t<decltype(unref(std::declval<const S&>()))>,
+                   SphereT<ScalarOf<S>>>::value;
   static ScalarOf<S> radius(const Posed<S>& ball) { return unref(ball.shape).radius; }
 };
 
@@ -192,8 +196,8 @@ DSS_INLINE bool testBallDirection(const B& ball, const Diff& diff, const Vec3<W>
 /// proved separating or the input is invalid (result set), kGiveUp when the filtered search
 /// cannot certify a separating sign, kContinue when q must clip the polygon.
 template <bool Exact, bool Filter, bool kHybrid, class A, class B, class W, class Diff, class PoleT>
-DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Vec3<W>& n, Vec3<W>& pa,
-                              Vec3<W>& pb, PoleT& pole, Result& result) {
+DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Vec3<W>& n,
+                              Vec3<W>& pa, Vec3<W>& pb, PoleT& pole, Result& result) {
   (void)a, (void)b;
   // In double only: with float shapes the general test is the faster one.
   if constexpr (!Filter && !kHybrid && IsPosedBall<B>::value && std::is_same<W, double>::value &&
@@ -251,7 +255,8 @@ DSS_NOINLINE ClipResult clipOutOfLine(Poly& poly, const PoleT& pole) {
 /// only: returns false, leaving `result` meaningless, as soon as a sign or the final
 /// separation cannot be certified) and exact (both). Returns true with the answer in `result`.
 template <class W, bool Exact, bool Filter, class A, class B, bool kHybrid>
-DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_steps, Result& result) {
+DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_steps,
+                            Result& result) {
   constexpr bool kOnlyFilter = Filter && !Exact;
   const Difference<A, B, W, Filter> diff(a, b);
   using Poly = SphericalPolygon<W, Exact, Filter>;
@@ -275,7 +280,8 @@ DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_
   Vec3<W> pa, pb;
   Pole<W, Exact> pole;
   result.iterations = 1;
-  const Step first_step = testDirection<Exact, Filter, kHybrid>(a, b, diff, n, pa, pb, pole, result);
+  const Step first_step =
+      testDirection<Exact, Filter, kHybrid>(a, b, diff, n, pa, pb, pole, result);
   if (first_step == Step::kDone) return true;
   if (first_step == Step::kGiveUp) return false;
 

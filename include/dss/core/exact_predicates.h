@@ -26,8 +26,8 @@ int det3Sign(const double hi[3][3], const double lo[3][3]);
 
 /// Sign of ax*by - ay*bx (the 2-D cross product of a and b) where each argument is the
 /// two-term value h + l.
-int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl,
-               double byh, double byl);
+int cross2Sign(double axh, double axl, double ayh, double ayl, double bxh, double bxl, double byh,
+               double byl);
 
 /// Sign of (ph + pl) . (qh + ql).
 int dotSign(const double ph[3], const double pl[3], const double qh[3], const double ql[3]);

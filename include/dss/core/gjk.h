@@ -72,9 +72,12 @@ template <class A, class B>
 Result intersectHybrid(const A& a, const B& b, const Options& opt = {}) {
   constexpr int kGjkSteps = 4;
   switch (opt.mode) {
-    case Mode::kExact: return detail::runDss<double, true, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
-    case Mode::kDouble: return detail::runDss<double, false, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
-    case Mode::kFloat: return detail::runDss<float, false, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
+    case Mode::kExact:
+      return detail::runDss<double, true, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
+    case Mode::kDouble:
+      return detail::runDss<double, false, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
+    case Mode::kFloat:
+      return detail::runDss<float, false, A, B, true>(a, b, opt.max_iterations, kGjkSteps);
   }
   return {};
 }

@@ -36,7 +36,8 @@ struct Posed {
   Vec3<Scalar> p_WS = Vec3<Scalar>::Zero();
 
   Posed() = default;
-  Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p) : shape(std::move(s)), R_WS(R), p_WS(p) {}
+  Posed(S s, const Mat3<Scalar>& R, const Vec3<Scalar>& p)
+      : shape(std::move(s)), R_WS(R), p_WS(p) {}
 
   DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d_W, const Vec3<Scalar>& shift) const {
     const Vec3<Scalar> zero(Scalar(0), Scalar(0), Scalar(0));
@@ -50,9 +51,10 @@ struct Posed {
                            R(0, 1) * d_W.x() + R(1, 1) * d_W.y() + R(2, 1) * d_W.z(),
                            R(0, 2) * d_W.x() + R(1, 2) * d_W.y() + R(2, 2) * d_W.z());
     const Vec3<Scalar> x = shape.support(d_S, zero);
-    return Vec3<Scalar>(R(0, 0) * x.x() + R(0, 1) * x.y() + R(0, 2) * x.z() + (p_WS.x() - shift.x()),
-                        R(1, 0) * x.x() + R(1, 1) * x.y() + R(1, 2) * x.z() + (p_WS.y() - shift.y()),
-                        R(2, 0) * x.x() + R(2, 1) * x.y() + R(2, 2) * x.z() + (p_WS.z() - shift.z()));
+    return Vec3<Scalar>(
+        R(0, 0) * x.x() + R(0, 1) * x.y() + R(0, 2) * x.z() + (p_WS.x() - shift.x()),
+        R(1, 0) * x.x() + R(1, 1) * x.y() + R(1, 2) * x.z() + (p_WS.y() - shift.y()),
+        R(2, 0) * x.x() + R(2, 1) * x.y() + R(2, 2) * x.z() + (p_WS.z() - shift.z()));
   }
   Vec3<Scalar> center() const {
     if constexpr (detail::CenteredAtOrigin<S>::value) return p_WS;

@@ -44,18 +44,24 @@ struct Result {
 
 inline const char* toString(Status s) {
   switch (s) {
-    case Status::kDecided: return "decided";
-    case Status::kIterationLimit: return "iteration_limit";
-    case Status::kInvalidInput: return "invalid_input";
+    case Status::kDecided:
+      return "decided";
+    case Status::kIterationLimit:
+      return "iteration_limit";
+    case Status::kInvalidInput:
+      return "invalid_input";
   }
   return "unknown";
 }
 
 inline const char* toString(Mode m) {
   switch (m) {
-    case Mode::kExact: return "exact";
-    case Mode::kDouble: return "double";
-    case Mode::kFloat: return "float";
+    case Mode::kExact:
+      return "exact";
+    case Mode::kDouble:
+      return "double";
+    case Mode::kFloat:
+      return "float";
   }
   return "unknown";
 }

@@ -74,7 +74,8 @@ struct BoxT {
   // a branch that random directions mispredict half the time. (A zero component may pick
   // either face: both maximise d.x.)
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    return Vec3<T>(std::copysign(half.x(), d.x()) - shift.x(), std::copysign(half.y(), d.y()) - shift.y(),
+    return Vec3<T>(std::copysign(half.x(), d.x()) - shift.x(),
+                   std::copysign(half.y(), d.y()) - shift.y(),
                    std::copysign(half.z(), d.z()) - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }

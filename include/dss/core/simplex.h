@@ -103,10 +103,14 @@ Vec3<W> closestOnTetrahedron(Vec3<W>* s, int& n) {
 template <class W>
 Vec3<W> closestOnSimplex(Vec3<W>* s, int& n) {
   switch (n) {
-    case 1: return s[0];
-    case 2: return closestOnSegment(s, n);
-    case 3: return closestOnTriangle(s, n);
-    default: return closestOnTetrahedron(s, n);
+    case 1:
+      return s[0];
+    case 2:
+      return closestOnSegment(s, n);
+    case 3:
+      return closestOnTriangle(s, n);
+    default:
+      return closestOnTetrahedron(s, n);
   }
 }
 

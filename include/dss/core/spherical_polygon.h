@@ -147,14 +147,17 @@ class alignas(64) SphericalPolygon {
       const Vec3<W> a = cross3(p0, v), b = cross3(v, p1);
       return sum3(scaled3(a, approxInvSqrt(dot3(a, a))), scaled3(b, approxInvSqrt(dot3(b, b))));
     }
-    return neg3(sum3(scaled3(p0, approxInvSqrt(dot3(p0, p0))), scaled3(p1, approxInvSqrt(dot3(p1, p1)))));
+    return neg3(
+        sum3(scaled3(p0, approxInvSqrt(dot3(p0, p0))), scaled3(p1, approxInvSqrt(dot3(p1, p1)))));
   }
 
   /// An upper bound of |hi| without a square root.
   static DSS_INLINE W normBound(const Vec3<W>& v) { return norm1_3(v); }
 
   DSS_INLINE ClipResult clip(const PoleT& q) {
-    const ClipResult r = count_ == 1 ? clipHemisphere(q) : count_ == 2 ? clipLune(q) : clipPolygon(q);
+    const ClipResult r = count_ == 1   ? clipHemisphere(q)
+                         : count_ == 2 ? clipLune(q)
+                                       : clipPolygon(q);
     if constexpr (kOnlyFilter) {
       if (unsure_) return ClipResult::kUnsure;
     }
@@ -212,7 +215,9 @@ class alignas(64) SphericalPolygon {
   // 3u |a|_1 |b|_1 per component; normalising divides it by |a x b| and adds a few u; the
   // dot with q adds 3u; the ignored lo parts add 3u |a||b|. 8u (|a|_1 |b|_1 / |a x b| + 1)
   // covers all of it with margin. The filtered policy bounds |a|_1 |b|_1 |q|_1 by M^3.
-  DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) { setUnit(i, cross3(a.hi, b.hi), a, b); }
+  DSS_INLINE void cacheVertex(int i, const PoleT& a, const PoleT& b) {
+    setUnit(i, cross3(a.hi, b.hi), a, b);
+  }
 
   DSS_INLINE void setUnit(int i, const Vec3<W>& v, const PoleT& a, const PoleT& b) {
     W e = W(0);
@@ -221,7 +226,8 @@ class alignas(64) SphericalPolygon {
   }
 
   // The unit vertex u of v = a x b and (filtering policies) its filter bound e.
-  DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u, W& e) const {
+  DSS_INLINE void unitVertex(const Vec3<W>& v, const PoleT& a, const PoleT& b, Vec3<W>& u,
+                             W& e) const {
     (void)a, (void)b, (void)e;
     const W n2 = dot3(v, v);
     if (n2 > W(0)) {
@@ -324,7 +330,7 @@ class alignas(64) SphericalPolygon {
       k = c;
       sk = crossSign(p0, p1, k);
     }
-    if (sk == 0) return ClipResult::kEmpty;  // cannot happen: a lune has independent poles
+    if (sk == 0) return ClipResult::kEmpty;   // cannot happen: a lune has independent poles
     const int sa = crossSign(q, p1, k) * sk;  // sign(alpha) = sign((q x p1)_k / (p0 x p1)_k)
     const int sb = crossSign(p0, q, k) * sk;  // sign(beta)  = sign((p0 x q)_k / (p0 x p1)_k)
     if (sa > 0 && sb > 0) return ClipResult::kUnchanged;
@@ -397,11 +403,11 @@ class alignas(64) SphericalPolygon {
 
   char lead_[48];  // see the top of the class
   PoleT poles_[kCapacity];
-  Vec3<W> unit_[kCapacity];  // unit vertex between poles i and i+1 (zero if degenerate)
+  Vec3<W> unit_[kCapacity];        // unit vertex between poles i and i+1 (zero if degenerate)
   W err_[Filter ? kCapacity : 1];  // filter bound of detSign (filtering policies only)
   int count_ = 0;
   W scale_ = W(0), scale2_ = W(0);  // filtered policy: M and 8u M^2
-  bool unsure_ = false;  // filtered policy: a sign the filter could not certify
+  bool unsure_ = false;             // filtered policy: a sign the filter could not certify
 };
 
 }  // namespace dss::detail

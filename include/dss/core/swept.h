@@ -19,8 +19,10 @@ struct SweptHull {
   Vec3<Scalar> p0 = Vec3<Scalar>::Zero(), p1 = Vec3<Scalar>::Zero();
 
   DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d, const Vec3<Scalar>& shift) const {
-    const Vec3<Scalar> x0 = R0 * shape.support(R0.transpose() * d, Vec3<Scalar>::Zero()) + (p0 - shift);
-    const Vec3<Scalar> x1 = R1 * shape.support(R1.transpose() * d, Vec3<Scalar>::Zero()) + (p1 - shift);
+    const Vec3<Scalar> x0 =
+        R0 * shape.support(R0.transpose() * d, Vec3<Scalar>::Zero()) + (p0 - shift);
+    const Vec3<Scalar> x1 =
+        R1 * shape.support(R1.transpose() * d, Vec3<Scalar>::Zero()) + (p1 - shift);
     return d.dot(x1) > d.dot(x0) ? x1 : x0;
   }
   Vec3<Scalar> center() const {

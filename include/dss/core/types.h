@@ -3,16 +3,16 @@
 // mode) and in `float` (the paper's arithmetic).
 #pragma once
 
-#include <cmath>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 // The search is one function per instantiation (DSS_NOINLINE); its leaves -- supports, vector
 // arithmetic, the polygon update -- are forced inline into it (DSS_INLINE): left out of line,
 // a call boundary spills every vector to memory. Sanitizer builds (and DSS_NO_FORCE_INLINE)
 // leave the choice to the compiler, which keeps instrumented builds fast to compile.
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__) && !defined(DSS_NO_FORCE_INLINE)
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_ADDRESS__) && \
+    !defined(DSS_NO_FORCE_INLINE)
 #define DSS_INLINE inline __attribute__((always_inline))
 #define DSS_NOINLINE __attribute__((noinline))
 #else
@@ -42,7 +42,8 @@ DSS_INLINE T dot3(const Vec3<T>& a, const Vec3<T>& b) {
 }
 template <class T>
 DSS_INLINE Vec3<T> cross3(const Vec3<T>& a, const Vec3<T>& b) {
-  return Vec3<T>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
+  return Vec3<T>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(),
+                 a.x() * b.y() - a.y() * b.x());
 }
 template <class T>
 DSS_INLINE Vec3<T> scaled3(const Vec3<T>& a, T s) {

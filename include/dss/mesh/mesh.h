@@ -10,11 +10,10 @@
 // exact because the support of conv(V) is the maximum over V.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "dss/core/any_shape.h"
 #include "dss/core/convex_hull.h"
@@ -30,7 +29,8 @@ struct TriangleMesh {
 /// transforms of the file (Collada units included, up-axis ignored) and then `scale` per axis.
 /// Throws std::runtime_error naming the path: missing file, unreadable file, no vertices,
 /// a non-finite vertex or a non-finite scale.
-TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+TriangleMesh loadMesh(const std::string& path,
+                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 
 /// The convex hull of `points`, with vertex adjacency when the set is full-dimensional.
 /// Flat (coplanar), collinear, single-point and tiny sets return the distinct points without

@@ -6,12 +6,12 @@
 // own counters are left untouched: they are not safe to increment from several threads).
 #pragma once
 
+#include <ompl/base/MotionValidator.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
 #include <utility>
-
-#include <ompl/base/MotionValidator.h>
 
 #include "dss/checker/continuous_motion.h"
 #include "dss/planning/group_state_space.h"

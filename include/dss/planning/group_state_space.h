@@ -10,12 +10,12 @@
 // values and values outside the bounds make it return false, so NaN/Inf states are invalid.
 #pragma once
 
+#include <ompl/base/StateSpace.h>
+
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <ompl/base/StateSpace.h>
 
 #include "dss/robot/robot_model.h"
 

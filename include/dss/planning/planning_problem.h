@@ -3,12 +3,12 @@
 // validity checkers by name. Shared by dss_plan, dss_check and the tests.
 #pragma once
 
+#include <ompl/base/SpaceInformation.h>
+
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <ompl/base/SpaceInformation.h>
 
 #include "dss/checker/checker_setup.h"
 #include "dss/planning/continuous_motion_validator.h"
@@ -32,12 +32,12 @@ Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
 
 /// An OMPL validity checker on a state checker by name; throws std::invalid_argument for an
 /// unknown name.
-std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& problem, const CheckerConfig& config);
+std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& problem,
+                                                     const CheckerConfig& config);
 
 /// The continuous motion validator on a DSS validity checker of the problem; throws
 /// std::invalid_argument for another checker. `min_fraction`: see ContinuousMotionChecker.
-std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(const Problem& problem,
-                                                                         const ValidityChecker& checker,
-                                                                         double min_fraction = 1.0 / 1024.0);
+std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(
+    const Problem& problem, const ValidityChecker& checker, double min_fraction = 1.0 / 1024.0);
 
 }  // namespace dss

@@ -9,11 +9,11 @@
 // thread-safe, as the checker it holds.
 #pragma once
 
+#include <ompl/base/StateValidityChecker.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
-
-#include <ompl/base/StateValidityChecker.h>
 
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/state_checker.h"
@@ -23,7 +23,8 @@ namespace dss {
 
 class ValidityChecker : public ompl::base::StateValidityChecker {
  public:
-  ValidityChecker(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const StateChecker> checker,
+  ValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                  std::shared_ptr<const StateChecker> checker,
                   std::shared_ptr<const GroupStateMap> map);
 
   bool isValid(const ompl::base::State* state) const override;

@@ -11,12 +11,11 @@
 // Link pairs are (a, b) with a < b, link indices of the model.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/robot/robot_model.h"
 #include "dss/robot/srdf.h"
@@ -31,19 +30,20 @@ std::vector<LinkPair> adjacentLinkPairs(const RobotModel& model);
 struct SelfCollisionPairs {
   std::vector<LinkPair> pairs;  ///< to check, sorted
   std::size_t geometry_links = 0;
-  std::size_t all_pairs = 0;      ///< pairs of links with geometry
-  std::size_t adjacent = 0;       ///< removed as adjacent
-  std::size_t rigid = 0;          ///< removed as rigidly attached (and not adjacent)
-  std::size_t disabled = 0;       ///< removed by the SRDF (and not already removed)
-  std::size_t allowed = 0;        ///< removed by the extra allowed list (and not already removed)
-  std::string summary() const;    ///< e.g. "check 23 of 55 link pairs (adjacent 10, ...)"
+  std::size_t all_pairs = 0;    ///< pairs of links with geometry
+  std::size_t adjacent = 0;     ///< removed as adjacent
+  std::size_t rigid = 0;        ///< removed as rigidly attached (and not adjacent)
+  std::size_t disabled = 0;     ///< removed by the SRDF (and not already removed)
+  std::size_t allowed = 0;      ///< removed by the extra allowed list (and not already removed)
+  std::string summary() const;  ///< e.g. "check 23 of 55 link pairs (adjacent 10, ...)"
 };
 
 /// `srdf` may be nullptr. Names in the SRDF or in `allowed` that the model lacks throw
 /// std::runtime_error naming the source and the link.
-SelfCollisionPairs selfCollisionPairs(const RobotModel& model, const Srdf* srdf,
-                                      const std::vector<std::pair<std::string, std::string>>& allowed = {},
-                                      bool exclude_rigid = true);
+SelfCollisionPairs selfCollisionPairs(
+    const RobotModel& model, const Srdf* srdf,
+    const std::vector<std::pair<std::string, std::string>>& allowed = {},
+    bool exclude_rigid = true);
 
 /// Do links a and b (with all their collision elements at the given link poses) intersect?
 /// Exact-mode DSS; touching counts as intersecting.
@@ -59,7 +59,7 @@ struct DisabledPairsOptions {
 struct DisabledPairsResult {
   std::vector<SrdfDisabledPair> pairs;  ///< reasons: Adjacent, Default, Always, Never
   int samples = 0;
-  std::size_t checked_pairs = 0;        ///< pairs sampled (not adjacent, not default)
+  std::size_t checked_pairs = 0;  ///< pairs sampled (not adjacent, not default)
   /// The SRDF lines, one <disable_collisions .../> per pair.
   std::string toSrdf() const;
 };
@@ -67,6 +67,7 @@ struct DisabledPairsResult {
 /// Samples `samples` uniform random states within the joint limits (continuous joints in
 /// [-pi, pi]) and reports every pair of links with geometry that is adjacent, in collision at
 /// the default state, in collision in every sample, or in none.
-DisabledPairsResult computeDisabledPairs(const RobotModel& model, const DisabledPairsOptions& options = {});
+DisabledPairsResult computeDisabledPairs(const RobotModel& model,
+                                         const DisabledPairsOptions& options = {});
 
 }  // namespace dss

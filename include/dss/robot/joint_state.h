@@ -23,7 +23,8 @@ namespace dss {
 /// non-finite value.
 std::vector<double> assembleState(const RobotModel& model,
                                   const std::vector<std::pair<std::string, double>>& named,
-                                  const std::string& source, std::vector<std::string>* notes = nullptr,
+                                  const std::string& source,
+                                  std::vector<std::string>* notes = nullptr,
                                   std::vector<double> base = {});
 
 /// Held values of every active joint: the model's default state, then `overrides` by name

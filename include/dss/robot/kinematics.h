@@ -15,9 +15,8 @@
 // no reference to its RobotModel.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "dss/robot/robot_model.h"
 
@@ -49,7 +48,17 @@ class Kinematics {
   std::size_t numActiveJoints() const { return num_active_; }
 
  private:
-  enum class Motion : unsigned char { kNone, kRotX, kRotY, kRotZ, kRotAxis, kTransX, kTransY, kTransZ, kTransAxis };
+  enum class Motion : unsigned char {
+    kNone,
+    kRotX,
+    kRotY,
+    kRotZ,
+    kRotAxis,
+    kTransX,
+    kTransY,
+    kTransZ,
+    kTransAxis
+  };
   /// Two doubles in one SIMD register (SSE2, NEON): a 4x4 column-major pose is 8 of them.
   using Pair = double __attribute__((vector_size(16)));
   struct Step {
@@ -58,12 +67,12 @@ class Kinematics {
     Pair m[4][3];
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int link;
-    int ref;  // computed link whose pose this one starts from; -1: the base pose
-    int q_index;           // active joint index read
-    int trig;              // kRotX/Y/Z: index into trig_steps_; else -1
-    double multiplier;     // sign of an axis-aligned axis, times the mimic multiplier
-    double offset;         // mimic offset times the same sign
-    bool identity_R;       // R_c is exactly the identity: only the translation applies
+    int ref;            // computed link whose pose this one starts from; -1: the base pose
+    int q_index;        // active joint index read
+    int trig;           // kRotX/Y/Z: index into trig_steps_; else -1
+    double multiplier;  // sign of an axis-aligned axis, times the mimic multiplier
+    double offset;      // mimic offset times the same sign
+    bool identity_R;    // R_c is exactly the identity: only the translation applies
     /// R_c is a signed permutation (joint origins turned by multiples of pi/2): column j of
     /// the product is sign[j] times column col[j] of the reference pose, with no sum.
     bool perm;

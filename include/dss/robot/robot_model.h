@@ -8,12 +8,11 @@
 // follow their leader (value = multiplier * leader + offset).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <limits>
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/core/any_shape.h"
 

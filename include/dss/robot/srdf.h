@@ -69,7 +69,8 @@ Srdf parseSrdf(const std::string& text, const std::string& source);
 /// Throws std::runtime_error naming the SRDF and the group when the group, or a joint, link
 /// or subgroup it names, is missing from the model, or a chain's base is not an ancestor of
 /// its tip. Joints named in the group that are fixed (or mimic) are skipped.
-std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf, const std::string& group);
+std::vector<int> groupActiveJoints(const RobotModel& model, const Srdf& srdf,
+                                   const std::string& group);
 
 /// Every link or joint the SRDF names that the model lacks, one line each (empty: consistent).
 std::vector<std::string> checkSrdfAgainstModel(const RobotModel& model, const Srdf& srdf);

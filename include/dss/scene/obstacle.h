@@ -4,9 +4,8 @@
 // checker can test, bound and drop on its own.
 #pragma once
 
-#include <string>
-
 #include <Eigen/Geometry>
+#include <string>
 
 #include "dss/core/any_shape.h"
 

@@ -7,12 +7,11 @@
 // the robot's frames.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dss/scene/allowed_collision_matrix.h"
 #include "dss/scene/obstacle.h"
