@@ -30,27 +30,16 @@ Scratch& scratch() {
 DssChecker::DssChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings)
     : StateChecker(std::move(model)), settings_(settings) {}
 
-StateVerdict DssChecker::check(const double* q) const {
+bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) const {
   const CollisionModel& m = model();
-  CounterSlots::Slot& c = counterSlots().local();
-  c.add(c.checks);
-  if (!m.withinBounds(q)) {
-    c.add(c.invalid_input);
-    return StateVerdict::kInvalidInput;
-  }
   Scratch& s = scratch();
   s.reserve(m);
   const bool held = m.heldMatch(q);
-  bool hit = m.selfTables().read(q, held, settings_.self_padding, s.skip.data());
-  if (!hit) {
-    // With the held joints at their values the sweep needs only the pose links.
-    (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
-    hit = collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding,
-                     settings_.self_padding);
-  }
-  if (!hit) return StateVerdict::kFree;
-  c.add(c.collisions);
-  return StateVerdict::kColliding;
+  if (m.selfTables().read(q, held, settings_.self_padding, s.skip.data())) return true;
+  // With the held joints at their values the sweep needs only the pose links.
+  (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
+  return collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding,
+                    settings_.self_padding);
 }
 
 bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
@@ -82,7 +71,7 @@ bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
   opt.inner_balls = settings_.obb_stage;
   const bool hit = pose_links ? sweep<SweepPoses::kPoseLinks>(m, X_WL, skip, opt, scene, self)
                               : sweep<SweepPoses::kOwnLinks>(m, X_WL, skip, opt, scene, self);
-  CounterSlots::Slot& c = counterSlots().local();
+  CounterSlots::Slot& c = counterSlot();
   if (tests) c.add(c.pair_tests, tests);
   if (cap) c.add(c.cap_hits);
   return hit;

@@ -137,14 +137,8 @@ Scratch& scratch() {
 }
 }  // namespace
 
-StateVerdict FclChecker::check(const double* q) const {
+bool FclChecker::collidesWithinBounds(const double* q, CounterSlots::Slot& c) const {
   const CollisionModel& m = model();
-  CounterSlots::Slot& c = counterSlots().local();
-  c.add(c.checks);
-  if (!m.withinBounds(q)) {
-    c.add(c.invalid_input);
-    return StateVerdict::kInvalidInput;
-  }
   Scratch& s = scratch();
   if (s.X_WL.size() < m.robot().links.size())
     s.X_WL.resize(m.robot().links.size(), Eigen::Isometry3d::Identity());
@@ -181,9 +175,7 @@ StateVerdict FclChecker::check(const double* q) const {
     }
   }
   if (tests) c.add(c.pair_tests, tests);
-  if (!hit) return StateVerdict::kFree;
-  c.add(c.collisions);
-  return StateVerdict::kColliding;
+  return hit;
 }
 
 bool FclChecker::collidesAabb(const Eigen::Isometry3d* X_WL, std::uint64_t* tests) const {

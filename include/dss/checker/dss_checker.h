@@ -36,7 +36,6 @@ class DssChecker : public StateChecker {
   using Settings = DssCheckerSettings;
   explicit DssChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings = {});
 
-  StateVerdict check(const double* q) const override;
   std::string name() const override { return "dss"; }
   const Settings& settings() const { return settings_; }
 
@@ -46,6 +45,7 @@ class DssChecker : public StateChecker {
   double clearance(const double* q) const;
 
  private:
+  bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
   bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,

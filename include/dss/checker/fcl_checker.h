@@ -55,7 +55,6 @@ class FclChecker : public StateChecker {
   using Settings = FclCheckerSettings;
   FclChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings = {});
 
-  StateVerdict check(const double* q) const override;
   std::string name() const override {
     return settings_.geometry == FclGeometry::kHull ? "fcl-hull" : "fcl-mesh";
   }
@@ -70,6 +69,7 @@ class FclChecker : public StateChecker {
   const fcl::CollisionGeometryd* obstacleGeometry(int o) const { return obstacles_[o].get(); }
 
  private:
+  bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   bool pair(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& X_A,
             const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& X_B, double padding) const;
   bool collidesAabb(const Eigen::Isometry3d* X_WL, std::uint64_t* tests) const;

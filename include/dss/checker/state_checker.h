@@ -25,7 +25,17 @@ class StateChecker {
 
   /// The verdict for one state: q holds one value per active joint of the robot (held joints
   /// included). Counted.
-  virtual StateVerdict check(const double* q) const = 0;
+  StateVerdict check(const double* q) const {
+    CounterSlots::Slot& c = counters_.local();
+    c.add(c.checks);
+    if (!model_->withinBounds(q)) {
+      c.add(c.invalid_input);
+      return StateVerdict::kInvalidInput;
+    }
+    if (!collidesWithinBounds(q, c)) return StateVerdict::kFree;
+    c.add(c.collisions);
+    return StateVerdict::kColliding;
+  }
   /// Colliding or invalid: what a planner must avoid.
   bool collides(const double* q) const { return check(q) != StateVerdict::kFree; }
 
@@ -36,7 +46,10 @@ class StateChecker {
 
  protected:
   explicit StateChecker(std::shared_ptr<const CollisionModel> model) : model_(std::move(model)) {}
-  const CounterSlots& counterSlots() const { return counters_; }
+  /// Whether a state within the model's bounds collides; `counters` (this thread's slot) takes
+  /// the narrow-phase tests and cap hits.
+  virtual bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const = 0;
+  CounterSlots::Slot& counterSlot() const { return counters_.local(); }
 
  private:
   std::shared_ptr<const CollisionModel> model_;
