@@ -228,7 +228,7 @@ class ConvexHullT {
     for (const auto& p : points_) {
       if (!p.allFinite()) throw std::invalid_argument("ConvexHull: non-finite point");
       sum += p;
-      magnitude_ = std::max(magnitude_, p.norm());
+      magnitude_ = std::max(magnitude_, p.stableNorm());  // no overflow at any scale
     }
     center_ = sum / T(points_.size());
     const std::size_t n = points_.size();

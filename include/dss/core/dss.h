@@ -80,7 +80,8 @@ struct Difference {
                                   double(std::numeric_limits<SB>::epsilon())) /
                          2;
     constexpr double kSep = 32 * u + 8 * (double(std::numeric_limits<W>::epsilon()) / 2);
-    sep_scale = W(kSep * mag);
+    // The absolute term covers roundings among subnormal numbers (shapes near 1e-300).
+    sep_scale = W(kSep * mag) + W(64) * std::numeric_limits<W>::denorm_min();
   }
 
   /// The centres of A and B (points of the shapes), in the working frame.
@@ -209,6 +210,9 @@ DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Ve
   pole.hi = diff3(pa, pb);
   const W t = dot3(n, pole.hi);
   if (!std::isfinite(t)) {  // a NaN or Inf anywhere in n or q shows here
+    // The filtered search hands an overflow over to the exact search, whose directions and
+    // poles are scaled to stay in range; there (and in the plain modes) it is invalid input.
+    if constexpr (Filter && !Exact) return Step::kGiveUp;
     result.status = Status::kInvalidInput;
     return Step::kDone;
   }
@@ -239,6 +243,24 @@ DSS_INLINE Step testDirection(const A& a, const B& b, const Diff& diff, const Ve
     // Otherwise the direction is not certifiably separating (a gap within rounding of the
     // supports): keep searching with q, which is a point of P up to rounding.
     return Step::kContinue;
+  }
+}
+
+/// Scales an exact pole (hi and lo alike) by the power of two that brings its largest |hi|
+/// component into [1, 2): the polygon only uses the poles' directions, and at any scale of the
+/// shapes its signs (products of up to three poles) then stay in the double range. A pole
+/// whose error part would fall out of the normal range is left as it is.
+template <class W>
+void scalePole(Pole<W, true>& p) {
+  const W m = std::max(std::abs(p.hi.x()), std::max(std::abs(p.hi.y()), std::abs(p.hi.z())));
+  if (!(m > W(0)) || !std::isfinite(m)) return;
+  const int e = std::ilogb(m);
+  if (e == 0) return;
+  for (int k = 0; k < 3; ++k)
+    if (p.lo[k] != W(0) && std::ilogb(p.lo[k]) - e < std::numeric_limits<W>::min_exponent) return;
+  for (int k = 0; k < 3; ++k) {
+    p.hi[k] = std::ldexp(p.hi[k], -e);
+    p.lo[k] = std::ldexp(p.lo[k], -e);
   }
 }
 
@@ -274,9 +296,18 @@ DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_
     return true;
   }
 
+  // Scales whose cubes (a lune's direction is cubic in the poles) or whose products with
+  // such directions would leave the double range go straight to the exact search.
+  if constexpr (kOnlyFilter) {
+    if (!(diff.scale > W(1e-60) && diff.scale < W(1e60))) return false;
+  }
+
   // The first step, from A's centre towards B's, is taken before anything else is set up:
-  // at low collision density most queries end here.
+  // at low collision density most queries end here. The exact search scales its directions
+  // and poles by powers of two (exactly) so that nothing it computes leaves the double range,
+  // whatever the shapes' scale.
   Vec3<W> n = neg3(c);
+  if constexpr (Exact) n = powerOfTwoScaled(n);
   Vec3<W> pa, pb;
   Pole<W, Exact> pole;
   result.iterations = 1;
@@ -288,16 +319,13 @@ DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_
   // The polygon starts as the hemisphere of the centres' difference; that pole's rounding
   // error is computed only now.
   Poly poly;
-  if constexpr (kOnlyFilter) {
-    // Scales whose cubes leave the double range go straight to the exact search.
-    if (!(diff.scale > W(1e-90) && diff.scale < W(1e90))) return false;
-    poly.setScale(diff.scale);
-  }
+  if constexpr (kOnlyFilter) poly.setScale(diff.scale);
   {
     Pole<W, Exact> first;
     first.hi = c;
     if constexpr (Exact) {
       first.lo = diff.error(start_a, start_b);
+      scalePole(first);
       first.norm = Poly::normBound(first.hi);
     }
     poly.init(first);
@@ -310,6 +338,7 @@ DSS_NOINLINE bool searchDss(const A& a, const B& b, int max_iterations, int gjk_
   for (;;) {
     if constexpr (Exact) {
       pole.lo = diff.error(pa, pb);
+      scalePole(pole);
       pole.norm = Poly::normBound(pole.hi);
     }
     ClipResult clipped;

@@ -17,9 +17,15 @@ struct Padded {
   Scalar radius{0};
 
   DSS_INLINE Vec3<Scalar> support(const Vec3<Scalar>& d, const Vec3<Scalar>& shift) const {
-    const Scalar n = d.norm();
     Vec3<Scalar> x = shape.support(d, shift);
-    if (n > Scalar(0)) x += d * (radius / n);
+    const Scalar n2 = d.squaredNorm();
+    if (n2 > Scalar(detail::kSafeLow) && n2 < Scalar(detail::kSafeHigh))
+      return x + d * (radius / std::sqrt(n2));
+    // A direction whose square overflows or vanishes: the ball's point from the direction
+    // scaled by a power of two (d == 0: nothing to add).
+    const Vec3<Scalar> u = detail::powerOfTwoScaled(d);
+    const Scalar n = u.norm();
+    if (n > Scalar(0)) x += u * (radius / n);
     return x;
   }
   Vec3<Scalar> center() const { return shape.center(); }

@@ -48,16 +48,17 @@ struct SphereT {
     const T n2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
     // radius / |d|, as sqrt(n2) * (radius / n2) where nothing can overflow or lose precision
     // (the usual case): the square root and the division then run side by side.
-    constexpr T lo = T(1e-30), hi = T(1e30);
-    T s;
+    constexpr T lo = T(detail::kSafeLow), hi = T(detail::kSafeHigh);
     if (n2 > lo && n2 < hi && radius > lo && radius < hi) {
-      s = std::sqrt(n2) * (radius / n2);
-    } else {
-      const T n = std::sqrt(n2);
-      // n == 0: any point will do; the centre keeps the result finite.
-      s = n > T(0) ? radius / n : T(0);
+      const T s = std::sqrt(n2) * (radius / n2);
+      return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(), d.z() * s - shift.z());
     }
-    return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(), d.z() * s - shift.z());
+    // A direction whose square overflows or vanishes is scaled by a power of two first: the
+    // result must be the maximiser for every finite d. d == 0: any point will do (the centre).
+    const Vec3<T> u = detail::powerOfTwoScaled(d);
+    const T n = std::sqrt(u.x() * u.x() + u.y() * u.y() + u.z() * u.z());
+    const T s = n > T(0) ? radius / n : T(0);
+    return Vec3<T>(u.x() * s - shift.x(), u.y() * s - shift.y(), u.z() * s - shift.z());
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
@@ -92,15 +93,23 @@ struct CapsuleT {
   static constexpr bool kCenteredAtOrigin = true;
   static CapsuleT fromLength(T radius, T length) { return CapsuleT{radius, length / T(2)}; }
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    const T n = std::sqrt(d.x() * d.x() + d.y() * d.y() + d.z() * d.z());
-    const T s = n > T(0) ? radius / n : T(0);
-    // The end cap on d's side, without a branch.
-    return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(),
-                   (d.z() * s + std::copysign(half_length, d.z())) - shift.z());
+    const T n2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+    if (!(n2 > T(detail::kSafeLow) && n2 < T(detail::kSafeHigh)))
+      return ballSupport(detail::powerOfTwoScaled(d), shift);
+    return ballSupport(d, shift);
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
   T magnitude() const { return radius + half_length; }
+
+ private:
+  // The end cap on d's side plus radius d/|d|, without a branch (d == 0: the cap's centre).
+  DSS_INLINE Vec3<T> ballSupport(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n = std::sqrt(d.x() * d.x() + d.y() * d.y() + d.z() * d.z());
+    const T s = n > T(0) ? radius / n : T(0);
+    return Vec3<T>(d.x() * s - shift.x(), d.y() * s - shift.y(),
+                   (d.z() * s + std::copysign(half_length, d.z())) - shift.z());
+  }
 };
 
 template <class T>
@@ -111,13 +120,24 @@ struct CylinderT {
   static constexpr bool kCenteredAtOrigin = true;
   static CylinderT fromLength(T radius, T length) { return CylinderT{radius, length / T(2)}; }
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
-    const T s = r > T(0) ? radius / r : T(0);
-    return Vec3<T>(d.x() * s, d.y() * s, std::copysign(half_length, d.z())) - shift;
+    const T r2 = d.x() * d.x() + d.y() * d.y();
+    // d.x == d.y == 0 is fine as it is (the axis point is a maximiser); r2 may underflow to
+    // zero for others.
+    if (!(r2 < T(detail::kSafeHigh)) ||
+        (r2 < T(detail::kSafeLow) && (d.x() != T(0) || d.y() != T(0))))
+      return rim(detail::powerOfTwoScaled(Vec3<T>(d.x(), d.y(), T(0))), d.z(), shift);
+    return rim(d, d.z(), shift);
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }
   T magnitude() const { return radius + half_length; }
+
+ private:
+  DSS_INLINE Vec3<T> rim(const Vec3<T>& d, T dz, const Vec3<T>& shift) const {
+    const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
+    const T s = r > T(0) ? radius / r : T(0);
+    return Vec3<T>(d.x() * s, d.y() * s, std::copysign(half_length, dz)) - shift;
+  }
 };
 
 template <class T>
@@ -127,6 +147,18 @@ struct ConeT {
   static constexpr bool kExactVertices = false;
   static ConeT fromLength(T radius, T length) { return ConeT{radius, length / T(2)}; }
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
+    const T n2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+    if (!(n2 > T(detail::kSafeLow) && n2 < T(detail::kSafeHigh)) && !detail::isZero3(d))
+      return apexOrRim(detail::powerOfTwoScaled(d), shift);
+    return apexOrRim(d, shift);
+  }
+  // The centroid of a cone lies a quarter of the way from the base to the apex.
+  Vec3<T> center() const { return Vec3<T>(T(0), T(0), -half_length / T(2)); }
+  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
+  T magnitude() const { return radius + half_length; }
+
+ private:
+  DSS_INLINE Vec3<T> apexOrRim(const Vec3<T>& d, const Vec3<T>& shift) const {
     const T r = std::sqrt(d.x() * d.x() + d.y() * d.y());
     // apex value d.z*h against the best base-rim value r*radius - d.z*h
     if (d.z() * half_length >= r * radius - d.z() * half_length) {
@@ -135,10 +167,6 @@ struct ConeT {
     const T s = r > T(0) ? radius / r : T(0);
     return Vec3<T>(d.x() * s, d.y() * s, -half_length) - shift;
   }
-  // The centroid of a cone lies a quarter of the way from the base to the apex.
-  Vec3<T> center() const { return Vec3<T>(T(0), T(0), -half_length / T(2)); }
-  Vec3<T> anchor() const { return Vec3<T>::Zero(); }
-  T magnitude() const { return radius + half_length; }
 };
 
 template <class T>
@@ -147,10 +175,15 @@ struct EllipsoidT {
   static constexpr bool kExactVertices = false;
   static constexpr bool kCenteredAtOrigin = true;
   DSS_INLINE Vec3<T> support(const Vec3<T>& d, const Vec3<T>& shift) const {
-    // x = D^2 d / |D d| with D = diag(radii)
-    const Vec3<T> dd = radii.cwiseProduct(d);
-    const T n = dd.norm();
-    return (n > T(0) ? Vec3<T>(radii.cwiseProduct(dd) / n) : Vec3<T>::Zero()) - shift;
+    // x = D (D d / |D d|) with D = diag(radii): D times a unit vector, which cannot overflow.
+    Vec3<T> dd = radii.cwiseProduct(d);
+    T n2 = dd.squaredNorm();
+    if (!(n2 > T(detail::kSafeLow) && n2 < T(detail::kSafeHigh)) && !detail::isZero3(dd)) {
+      dd = detail::powerOfTwoScaled(dd);
+      n2 = dd.squaredNorm();
+    }
+    const T n = std::sqrt(n2);
+    return (n > T(0) ? Vec3<T>(radii.cwiseProduct(dd / n)) : Vec3<T>::Zero()) - shift;
   }
   Vec3<T> center() const { return Vec3<T>::Zero(); }
   Vec3<T> anchor() const { return Vec3<T>::Zero(); }

@@ -29,7 +29,7 @@ struct SweptHull {
     return Scalar(0.5) * ((R0 * shape.center() + p0) + (R1 * shape.center() + p1));
   }
   Vec3<Scalar> anchor() const { return p0; }
-  Scalar magnitude() const { return shape.magnitude() + (p1 - p0).norm(); }
+  Scalar magnitude() const { return shape.magnitude() + (p1 - p0).stableNorm(); }
 };
 
 }  // namespace dss

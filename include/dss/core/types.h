@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 // The search is one function per instantiation (DSS_NOINLINE); its leaves -- supports, vector
@@ -68,6 +69,23 @@ DSS_INLINE T norm1_3(const Vec3<T>& a) {  // |a|_1, an upper bound of |a| withou
 template <class T>
 DSS_INLINE bool isZero3(const Vec3<T>& a) {
   return a.x() == T(0) && a.y() == T(0) && a.z() == T(0);
+}
+
+/// Supports that square their direction take it as it is while its squared norm stays in
+/// [kSafeLow, kSafeHigh] (the usual case, in float and double) and through powerOfTwoScaled
+/// otherwise.
+inline constexpr double kSafeLow = 1e-30, kSafeHigh = 1e30;
+
+/// d times the power of two that brings its largest |component| into [1, 2): the same
+/// direction (exactly, but for components more than about 2^1000 smaller than the largest),
+/// with a squared norm that can neither overflow nor vanish. Zero and non-finite vectors come
+/// back unchanged. For the rare directions outside the safe range: it calls libm.
+template <class T>
+Vec3<T> powerOfTwoScaled(const Vec3<T>& d) {
+  const T m = std::max(std::abs(d.x()), std::max(std::abs(d.y()), std::abs(d.z())));
+  if (!(m > T(0)) || !std::isfinite(m)) return d;
+  const int e = std::ilogb(m);
+  return Vec3<T>(std::ldexp(d.x(), -e), std::ldexp(d.y(), -e), std::ldexp(d.z(), -e));
 }
 }  // namespace detail
 
