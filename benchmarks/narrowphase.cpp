@@ -79,7 +79,7 @@ const char* kUsage =
     "  --max-iterations K  iteration cap of DSS, GJK and Hybrid (default dss::Options)\n"
     "  --seed S            generator seed\n"
     "  --csv FILE          write one row per workload x spread x algorithm\n"
-    "  --json FILE         the same rows plus the bar ratios, as JSON\n";
+    "  --json FILE         the same rows plus the target ratios, as JSON\n";
 
 std::vector<std::string> splitComma(const std::string& s) {
   std::vector<std::string> out;
@@ -599,7 +599,7 @@ struct Ratio {
   bool ok;
 };
 
-std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
+std::vector<Ratio> targetRatios(const std::vector<Row>& rows) {
   std::map<std::string, std::map<std::string, const Row*>> groups;
   std::vector<std::string> order;
   for (const auto& r : rows) {
@@ -613,7 +613,7 @@ std::vector<Ratio> barRatios(const std::vector<Row>& rows) {
     const auto& g = groups[key];
     if (!g.count("dss-double")) continue;
     const Row& d = *g.at("dss-double");
-    if (d.workload == "sweep") continue;  // the bar names the five workloads, not the sweep
+    if (d.workload == "sweep") continue;  // the targets name the five workloads, not the sweep
     const bool boxes = d.workload == "boxes";
     auto speedup = [&](const std::string& other, const std::string& what, double target) {
       if (!g.count(other)) return;
@@ -665,7 +665,7 @@ void printRatios(const std::vector<Ratio>& ratios) {
                 r.ok ? "ok" : "MISSED");
     met += r.ok;
   }
-  std::printf("bar: %d of %zu met\n", met, ratios.size());
+  std::printf("targets: %d of %zu met\n", met, ratios.size());
   // Per measure and workload: how many spreads meet it.
   std::map<std::string, std::pair<int, int>> summary;
   std::vector<std::string> order;
@@ -675,7 +675,7 @@ void printRatios(const std::vector<Ratio>& ratios) {
     summary[key].first += r.ok;
     summary[key].second += 1;
   }
-  std::printf("\nsummary (spreads meeting the bar / spreads measured):\n");
+  std::printf("\nsummary (spreads meeting the target / spreads measured):\n");
   for (const auto& key : order)
     std::printf("  %-60s %d/%d\n", key.c_str(), summary[key].first, summary[key].second);
 }
@@ -731,7 +731,7 @@ void writeJson(const std::string& path, const Config& cfg, const std::vector<Row
     j["rows"].push_back(x);
   }
   for (const auto& r : ratios)
-    j["bar"].push_back({{"workload", r.workload},
+    j["targets"].push_back({{"workload", r.workload},
                         {"sigma", r.sigma},
                         {"vertices", r.vertices},
                         {"density", r.density},
@@ -780,7 +780,7 @@ int runNarrowphase(int argc, char** argv) {
     }
   }
   printRows(rows);
-  const auto ratios = barRatios(rows);
+  const auto ratios = targetRatios(rows);
   printRatios(ratios);
   long long exact_wrong = 0;
   for (const auto& r : rows)

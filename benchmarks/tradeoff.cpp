@@ -104,7 +104,7 @@ const char* kUsage =
     "  --shared DIR         shared robots and scenes (default: the build's DSS_SHARED_DIR)\n"
     "  --quick              seconds-long run for CI (1 scene per robot, few states, 1 plan)\n"
     "  Exit status: 0; 1 on bad options or input; 3 when hull+exact misses a collision of the\n"
-    "  mesh truth that FCL's own gap does not explain (the issue-5 bar).\n";
+    "  mesh truth that FCL's own gap does not explain.\n";
 
 struct Args {
   std::vector<std::string> robots = {"panda", "ur5", "iiwa"};
@@ -1336,7 +1336,7 @@ int runTradeoff(int argc, char** argv) {
     writeCsv(a.csv, rows, a);
     std::cout << "wrote " << a.csv << "\n";
   }
-  // The issue-5 bar: hulls contain the meshes, so hull+exact never misses a mesh collision.
+  // Hulls contain the meshes, so hull+exact must never miss a mesh collision.
   long unexplained = 0, gaps = 0;
   for (const auto& r : rows)
     if (r.s.geo == Geo::kHull && r.s.mode == Mode::kExact && r.s.pad == 0.0)
