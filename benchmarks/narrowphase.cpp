@@ -732,13 +732,13 @@ void writeJson(const std::string& path, const Config& cfg, const std::vector<Row
   }
   for (const auto& r : ratios)
     j["targets"].push_back({{"workload", r.workload},
-                        {"sigma", r.sigma},
-                        {"vertices", r.vertices},
-                        {"density", r.density},
-                        {"measure", r.what},
-                        {"value", r.value},
-                        {"target", r.target},
-                        {"ok", r.ok}});
+                            {"sigma", r.sigma},
+                            {"vertices", r.vertices},
+                            {"density", r.density},
+                            {"measure", r.what},
+                            {"value", r.value},
+                            {"target", r.target},
+                            {"ok", r.ok}});
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
   f << j.dump(1) << '\n';

@@ -71,7 +71,8 @@ struct WorkloadSet {
 const char* workloadName(WorkloadKind kind);
 
 /// The spreads used by default for each workload (chosen so that the densities run from about
-/// 1 % to 100 %, with points near 60 % tetrahedra, 98 % boxes and 100 % polytopes, where the absolute targets are set).
+/// 1 % to 100 %, with points near 60 % tetrahedra, 98 % boxes and 100 % polytopes, where the
+/// absolute targets are set).
 std::vector<double> defaultSigmas(WorkloadKind kind);
 
 /// Spread giving about 50 % density for the vertex-count sweep.
