@@ -7,6 +7,7 @@
 // With --benchmark it runs ompl::tools::Benchmark instead (one experiment per problem, one
 // planner entry per planner and checker, e.g. RRTConnect[dss] and RRTConnect[fcl-hull]) and
 // writes OMPL benchmark logs for ompl_benchmark_statistics / Planner Arena (benchmark_log.h).
+// With --render it also writes an HTML page replaying each path in 3-D (render_html.h).
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/goals/GoalStates.h>
@@ -55,6 +56,8 @@
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "path_replay.h"
+#include "render_html.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -75,6 +78,11 @@ const char* kUsage =
     "64)\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --path FILE (CSV of the solution; with several problems FILE.<problem>.csv)\n"
+    "           --render FILE.html (one self-contained page: the robot's collision geometry\n"
+    "           replaying the path, drag to orbit, wheel to zoom; obstacles the checker pruned\n"
+    "           greyed, states found invalid red; with the problem not solved, the approximate\n"
+    "           path or else the straight start-goal motion; with several problems\n"
+    "           FILE.<problem>.html)\n"
     "  --benchmark: one ompl::tools::Benchmark experiment per problem, one planner entry per\n"
     "           planner and checker, named PLANNER[CHECKER]; --planner and --checker take\n"
     "           comma lists (checkers: dss,fcl-hull by default); --runs N per entry (10);\n"
@@ -137,7 +145,7 @@ double threadCpuSeconds() {
 
 struct Args {
   std::string robot, srdf, scene, request, problems, planner = "RRTConnect", checker = "dss",
-                                                     motion = "discrete", path;
+                                                     motion = "discrete", path, render;
   double min_fraction = 1.0 / 1024.0;
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;
@@ -190,14 +198,18 @@ struct LoadedProblem {
   dss::Problem p;
   std::vector<double> start;               // group values
   std::vector<std::vector<double>> goals;  // group values, one per goal constraint set
+  dss::Scene scene;                        // --render: the scene as loaded, before pruning
 };
 
 LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files) {
   const dss::PlanRequest req = dss::loadPlanRequestYaml(files.request);
   dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
+  dss::Scene loaded = a.render.empty() ? dss::Scene{} : scene;
   const std::map<std::string, double> start = req.startState();
-  LoadedProblem lp{
-      dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding), {}, {}};
+  LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding),
+                   {},
+                   {},
+                   std::move(loaded)};
   const dss::Problem& p = lp.p;
   {
     std::set<std::string> movable(p.map->jointNames().begin(), p.map->jointNames().end());
@@ -235,6 +247,50 @@ void setStartAndGoals(og::SimpleSetup& ss, const LoadedProblem& lp) {
     goal->addState(gs);
   }
   ss.setGoal(goal);
+}
+
+// FILE itself, or FILE.<problem>.EXT per problem (EXT: FILE's own, else `ext`).
+std::string perProblemFile(const std::string& file, const std::string& ext, const ProblemFiles& f,
+                           bool per_problem) {
+  if (!per_problem) return file;
+  std::string name = f.name;
+  std::replace(name.begin(), name.end(), '/', '_');
+  const fs::path p(file);
+  const std::string e = p.has_extension() ? p.extension().string() : ext;
+  return (p.parent_path() / (p.stem().string() + "." + name + e)).string();
+}
+
+// --render: the page for the solution path (approximate when not solved; without any path,
+// the straight motion from the start to the first goal), every state along it checked.
+void writeRender(const Args& a, const LoadedProblem& lp, const dss::ValidityChecker& checker,
+                 og::SimpleSetup& ss, const ProblemFiles& files, const ob::PlannerStatus& status) {
+  const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
+  const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
+  const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  const bool have_path = ss.haveSolutionPath();
+  const og::PathGeometric path =
+      have_path ? ss.getSolutionPath() : og::PathGeometric(lp.p.si, s0, g0);
+  const dss_plan::PathReplay replay = dss_plan::replayPath(lp.p, checker, path);
+  dss_plan::RenderPage page;
+  page.title = files.name;
+  page.summary = std::string(solved ? "solved" : "NOT solved") + " (" + status.asString() +
+                 "), planner " + a.planner + ", checker " + checker.checker().name() + ", motion " +
+                 a.motion;
+  page.solved = solved;
+  page.path_kind = solved      ? "solution path"
+                   : have_path ? "approximate path (the goal not reached)"
+                               : "straight start-goal motion (no path found)";
+  page.model = lp.p.model.get();
+  page.loaded_scene = &lp.scene;
+  page.replay = &replay;
+  const std::string file = perProblemFile(a.render, ".html", files, !a.problems.empty());
+  std::vector<std::string> notes;
+  dss_plan::writeRenderHtml(file, page, &notes);
+  for (const auto& n : notes)
+    std::cerr << "dss_plan: " << files.name << ": warning: render: " << n << "\n";
+  std::cerr << "dss_plan: " << files.name << ": render written to " << file << " ("
+            << replay.path_states << " path states, " << replay.samples_invalid << " of "
+            << replay.samples_checked << " checked states invalid)\n";
 }
 
 Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files,
@@ -331,6 +387,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
               << " state checks (" << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
               << " us of planning per check), " << j["motion_checks"] << " motion checks\n";
   }
+  if (!a.render.empty()) writeRender(a, lp, *checker, ss, files, status);
   return {solved, t};
 }
 
@@ -388,12 +445,7 @@ class InterleavedBenchmark : public ompl::tools::Benchmark {
 };
 
 std::string logFileFor(const Args& a, const ProblemFiles& f, std::size_t problem_count) {
-  if (problem_count == 1) return a.log;
-  std::string name = f.name;
-  std::replace(name.begin(), name.end(), '/', '_');
-  const fs::path p(a.log);
-  const std::string ext = p.has_extension() ? p.extension().string() : std::string(".log");
-  return (p.parent_path() / (p.stem().string() + "." + name + ext)).string();
+  return perProblemFile(a.log, ".log", f, problem_count > 1);
 }
 
 double median(std::vector<double> v) {
@@ -560,7 +612,10 @@ int run(int argc, char** argv) {
       a.resolution = cli.number(0.0, 1.0);
     else if (cli.option("--path"))
       a.path = cli.value();
-    else if (cli.flag("--simplify"))
+    else if (cli.option("--render")) {
+      a.render = cli.value();
+      if (a.render.empty()) cli.error("--render: empty file name");
+    } else if (cli.flag("--simplify"))
       a.simplify = true;
     else if (cli.flag("--check-time"))
       a.check_time = true;
@@ -609,6 +664,7 @@ int run(int argc, char** argv) {
     if (log_given) cli.error("--log needs --benchmark");
   } else {
     if (!a.path.empty()) cli.error("--path is not available with --benchmark");
+    if (!a.render.empty()) cli.error("--render is not available with --benchmark");
     if (a.log.empty()) cli.error("--log: empty file name");
   }
 
