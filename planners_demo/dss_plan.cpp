@@ -54,6 +54,7 @@
 #include "cli.h"
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
+#include "dss/robot/joint_states_csv.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "path_replay.h"
@@ -343,19 +344,19 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
     length = ss.getSolutionPath().length();
     path_states = ss.getSolutionPath().getStateCount();
     if (!a.path.empty()) {
-      std::string file = a.path;
-      if (!a.problems.empty()) file += "." + files.name + ".csv";
+      // Every joint of the robot (the group's, the held ones and mimic joints), so that the
+      // file reads back into dss_check --states.
+      const std::string file = perProblemFile(a.path, ".csv", files, !a.problems.empty());
       std::ofstream out(file);
       if (!out) throw std::runtime_error(file + ": cannot write");
-      const auto& names = p.map->jointNames();
-      for (std::size_t i = 0; i < names.size(); ++i) out << (i ? "," : "") << names[i];
-      out << "\n" << std::setprecision(17);
-      std::vector<double> g(names.size());
+      std::vector<std::vector<double>> states;
+      std::vector<double> q(p.model->robot().numActiveJoints());
       for (auto* s : ss.getSolutionPath().getStates()) {
-        p.map->toGroupValues(s, g.data());
-        for (std::size_t i = 0; i < g.size(); ++i) out << (i ? "," : "") << g[i];
-        out << "\n";
+        p.map->toJoints(s, q.data());
+        states.push_back(q);
       }
+      dss::writeJointStatesCsv(out, p.model->robot(), states);
+      if (!out) throw std::runtime_error(file + ": cannot write");
     }
   }
   nlohmann::json j;

@@ -2,6 +2,7 @@
 // or several checkers. stdout: 1/0 per state for the first checker; stderr: one JSON summary
 // per checker (states, valid, median microseconds per state over repetitions, disagreements
 // against the first checker). --describe prints the model as JSON instead.
+#include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -19,6 +20,7 @@
 #include "cli.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/planning/planning_problem.h"
+#include "dss/robot/joint_states_csv.h"
 #include "dss/scene/scene_loader.h"
 
 namespace {
@@ -40,64 +42,10 @@ const char* kUsage =
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n";
 
-struct Csv {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-};
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  std::istringstream is(s);
-  while (std::getline(is, cur, sep)) {
-    const auto b = cur.find_first_not_of(" \t\r");
-    const auto e = cur.find_last_not_of(" \t\r");
-    out.push_back(b == std::string::npos ? "" : cur.substr(b, e - b + 1));
-  }
-  return out;
-}
-
 double threadCpuSeconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-Csv readCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  Csv csv;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    auto cells = split(line, ',');
-    if (csv.names.empty()) {
-      csv.names = cells;
-      for (const auto& n : csv.names)
-        if (n.empty())
-          throw std::runtime_error(path + ":" + std::to_string(lineno) +
-                                   ": empty joint name in header");
-      continue;
-    }
-    if (cells.size() != csv.names.size())
-      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": " +
-                               std::to_string(cells.size()) + " values, header has " +
-                               std::to_string(csv.names.size()));
-    std::vector<double> row;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      char* end = nullptr;
-      const double v = std::strtod(cells[i].c_str(), &end);
-      if (cells[i].empty() || *end != '\0')
-        throw std::runtime_error(path + ":" + std::to_string(lineno) + ": column " + csv.names[i] +
-                                 ": '" + cells[i] + "' is not a number");
-      row.push_back(v);  // NaN/inf are accepted: such states are invalid, not input errors
-    }
-    csv.rows.push_back(std::move(row));
-  }
-  if (csv.names.empty()) throw std::runtime_error(path + ": no header line");
-  return csv;
 }
 
 nlohmann::json describe(const dss::Problem& p) {
@@ -218,12 +166,32 @@ int run(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
-  const dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  if (!states.empty()) {
+    // A CSV may hold joint values outside the URDF limits (MotionBenchMaker's Panda fingers at
+    // 0.065 against 0.04). The model is built with those limits widened to cover them, so that
+    // its bounds (prismatic travel, the reach of every link) hold for every row; each widened
+    // joint is reported.
+    const dss::JointStatesCsv csv =
+        dss::readJointStatesCsv(states, *r.model, r.model->defaultState());
+    auto widened = std::make_shared<dss::RobotModel>(*r.model);
+    for (std::size_t a = 0; a < widened->numActiveJoints(); ++a) {
+      dss::RobotJoint& j = widened->joints[widened->active_joints[a]];
+      if (!j.limits.has_position_limits) continue;
+      double lo = j.limits.lower, hi = j.limits.upper;
+      for (const auto& q : csv.states)
+        if (std::isfinite(q[a])) lo = std::min(lo, q[a]), hi = std::max(hi, q[a]);
+      if (lo == j.limits.lower && hi == j.limits.upper) continue;
+      std::cerr << "dss_check: warning: " << states << ": joint " << j.name << " has values in ["
+                << lo << ", " << hi << "], outside its limits [" << j.limits.lower << ", "
+                << j.limits.upper << "]: checked with the limits widened to cover them\n";
+      j.limits.lower = lo;
+      j.limits.upper = hi;
+    }
+    r.model = widened;
+  }
   dss::Scene scene;
   if (!scene_path.empty()) scene = dss::loadScene(scene_path);
-  Csv csv;
-  if (!states.empty()) csv = readCsv(states);
-  if (group.empty() && !states.empty() && !r.srdf) group = "";
   const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, padding);
   for (const auto& w : p.warnings) std::cerr << "dss_check: warning: " << w << "\n";
   if (do_describe) {
@@ -231,38 +199,27 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // States as OMPL states of the group space.
-  const auto& names = p.map->jointNames();
-  std::vector<ompl::base::State*> st;
+  // States as vectors of every active joint's value. A CSV sets the joints it names (joints
+  // outside the group too: such a state takes the full kinematics), the others keep their held
+  // values; it must name every joint of the group. Random states are uniform in the group's
+  // space.
+  const std::size_t nq = r.model->numActiveJoints();
+  std::vector<std::vector<double>> st;
   if (!states.empty()) {
-    std::vector<int> column(names.size(), -1);
-    for (std::size_t c = 0; c < csv.names.size(); ++c) {
-      auto it = std::find(names.begin(), names.end(), csv.names[c]);
-      if (it == names.end()) {
-        if (r.model->jointIndex(csv.names[c]) < 0)
-          throw std::runtime_error(states + ": header column '" + csv.names[c] +
-                                   "' is not a joint of " + robot);
-        throw std::runtime_error(states + ": header column '" + csv.names[c] +
-                                 "' is not a joint of group '" + p.group + "'");
-      }
-      column[it - names.begin()] = int(c);
-    }
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (column[i] < 0)
-        throw std::runtime_error(states + ": header lacks group joint '" + names[i] + "'");
-    std::vector<double> g(names.size());
-    for (const auto& row : csv.rows) {
-      for (std::size_t i = 0; i < names.size(); ++i) g[i] = row[column[i]];
-      auto* s = p.si->allocState();
-      p.map->fromGroupValues(g.data(), s);
-      st.push_back(s);
-    }
+    dss::JointStatesCsv csv = dss::readJointStatesCsv(states, *r.model, p.map->held());
+    for (const std::string& name : p.map->jointNames())
+      if (std::find(csv.columns.begin(), csv.columns.end(), name) == csv.columns.end())
+        throw std::runtime_error(states + ": the header lacks joint '" + name + "' of group '" +
+                                 p.group + "'");
+    st = std::move(csv.states);
   } else {
     auto sampler = p.si->allocStateSampler();
+    ompl::base::ScopedState<> s(p.si->getStateSpace());
+    std::vector<double> q(nq);
     for (long i = 0; i < random_n; ++i) {
-      auto* s = p.si->allocState();
-      sampler->sampleUniform(s);
-      st.push_back(s);
+      sampler->sampleUniform(s.get());
+      p.map->toJoints(s.get(), q.data());
+      st.push_back(q);
     }
   }
 
@@ -276,7 +233,7 @@ int run(int argc, char** argv) {
   // Every checker is built first; then the repetitions run interleaved (checker 1, 2, ...,
   // then again), after one untimed warm-up pass each, so that a slow phase of a shared machine
   // hits every checker alike and the ratios of medians stay meaningful.
-  std::vector<std::shared_ptr<dss::ValidityChecker>> built;
+  std::vector<std::shared_ptr<const dss::StateChecker>> built;
   for (std::size_t k = 0; k < names_list.size(); ++k) {
     dss::CheckerConfig cfg;
     cfg.checker = names_list[k];
@@ -296,7 +253,7 @@ int run(int argc, char** argv) {
     else
       cfg.dss_options.mode = dss::Mode::kFloat;  // checked when parsed
     cfg.obb_stage = box_stage;
-    auto checker = dss::makeValidityChecker(p, cfg);
+    auto checker = dss::makeStateChecker(p.model, cfg);
     built.push_back(checker);
   }
   const std::size_t nc = built.size();
@@ -305,12 +262,12 @@ int run(int argc, char** argv) {
   const double n = double(std::max<std::size_t>(1, st.size()));
   for (int rep = -1; rep < repeat; ++rep) {
     for (std::size_t k = 0; k < nc; ++k) {
-      const dss::ValidityChecker& checker = *built[k];
+      const dss::StateChecker& checker = *built[k];
       std::vector<char>& v = valid[k];
       const auto t0 = std::chrono::steady_clock::now();
       const double c0 = threadCpuSeconds();
       if (threads <= 1) {
-        for (std::size_t i = 0; i < st.size(); ++i) v[i] = checker.isValid(st[i]);
+        for (std::size_t i = 0; i < st.size(); ++i) v[i] = !checker.collides(st[i].data());
       } else {
         // Contiguous blocks per thread (no false sharing on `valid` except at block edges).
         std::vector<std::thread> pool;
@@ -319,7 +276,7 @@ int run(int argc, char** argv) {
           pool.emplace_back([&, t] {
             const std::size_t b = std::min(st.size(), t * block),
                               e = std::min(st.size(), b + block);
-            for (std::size_t i = b; i < e; ++i) v[i] = checker.isValid(st[i]);
+            for (std::size_t i = b; i < e; ++i) v[i] = !checker.collides(st[i].data());
           });
         for (auto& th : pool) th.join();
       }
@@ -353,7 +310,7 @@ int run(int argc, char** argv) {
     const auto c = checker->counters();
     nlohmann::json j;
     j["checker"] = names_list[k];
-    if (checker->checker().name() == "dss") j["mode"] = mode;
+    if (checker->name() == "dss") j["mode"] = mode;
     j["states"] = st.size();
     j["valid"] = std::count(valid[k].begin(), valid[k].end(), 1);
     j["us_per_state"] = per_state[k].empty() ? 0.0 : per_state[k][per_state[k].size() / 2];
@@ -366,7 +323,7 @@ int run(int argc, char** argv) {
     j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
     j["cap_hits"] = c.cap_hits;
     j["model"] = p.model->summary();
-    if (const auto* f = dynamic_cast<const dss::FclChecker*>(&checker->checker())) {
+    if (const auto* f = dynamic_cast<const dss::FclChecker*>(checker.get())) {
       j["solver"] = dss::FclChecker::solverDescription();
       j["prefilter"] = f->prefilterName();
     }
@@ -380,7 +337,6 @@ int run(int argc, char** argv) {
     }
     std::cerr << j.dump() << "\n";
   }
-  for (auto* s : st) p.si->freeState(s);
   return 0;
 }
 

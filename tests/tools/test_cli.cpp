@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "support/run_tool.h"
 
 namespace fs = std::filesystem;
 
@@ -296,32 +297,13 @@ namespace {
 
 const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7/dss_arm7.urdf";
 
-std::string toolPath(const std::string& name) {
-  return std::string(DSS_BINARY_DIR) + (name == "dss_plan" ? "/planners_demo/" : "/tools/") + name;
-}
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-/// Runs tool `name` with `args` (each shell-quoted here), stdin from /dev/null.
+/// Runs tool `name` with `args` (support/run_tool.h).
 Outcome runTool(const std::string& name, const std::vector<std::string>& args) {
-  const fs::path dir = fs::temp_directory_path() / ("dss_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / "out.txt", err = dir / "err.txt";
-  std::string cmd = "timeout 120 " + quote(toolPath(name));
-  for (const std::string& a : args) cmd += " " + quote(a);
-  cmd += " < /dev/null > " + quote(out.string()) + " 2> " + quote(err.string());
-  const int status = std::system(cmd.c_str());
+  const dss_test::ToolRun r = dss_test::runTool(name, args);
   Outcome o;
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  auto read = [](const fs::path& p) {
-    std::ifstream in(p);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  o.out = read(out);
-  o.err = read(err);
-  fs::remove_all(dir);
+  o.exit_code = r.exit_code;
+  o.out = r.out;
+  o.err = r.err;
   return o;
 }
 
