@@ -219,6 +219,9 @@ int run(int argc, char** argv) {
   ompl::RNG::setSeed(seed);
 
   const dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  // Every stored warning reaches the user: the robot's and the SRDF's here, the scene's
+  // through the problem's warnings below.
+  for (const auto& w : r.warnings()) std::cerr << "dss_check: warning: " << w << "\n";
   dss::Scene scene;
   if (!scene_path.empty()) scene = dss::loadScene(scene_path);
   Csv csv;
