@@ -1,17 +1,15 @@
-// Kinematic-tree check of a model that urdfdom accepted (internal to the URDF readers: the
-// robot loader and the URDF-as-world reader).
+// Kinematic-tree check of a URDF's links and joints, as its XML declares them (internal to
+// the URDF readers: the robot loader and the URDF-as-world reader). It runs before urdfdom.
 //
 // urdfdom links its joints without checking that they form a tree. A link that is the child
 // of two joints (a closed chain, or a cycle through links reachable from the root) keeps one
 // of them as its parent while both list it as a child, so a walk from the root loops forever;
 // links in a cycle that does not touch the root are accepted as long as exactly one link has
-// no parent, so a walk from the root never sees them. checkUrdfTree finds both before any
-// walk and names the links and joints involved; the walk never recurses.
+// no parent, so a walk from the root never sees them; and when no link or several links lack
+// a parent urdfdom's message names no cycle or only two roots. treeProblem finds each case
+// and names the links and joints involved, with their lines; the walks here never recurse.
 #pragma once
 
-#include <urdf_model/model.h>
-
-#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -20,15 +18,18 @@
 namespace dss {
 namespace urdf_tree {
 
-/// " (line N)" for a link or joint name, or "" when unknown.
-using LineOf = std::function<std::string(const std::string& name)>;
+/// One <joint>: its name and the links its <parent> and <child> name.
+struct JointEdge {
+  std::string name, parent, child;
+};
 
 namespace detail {
 
 // "'a' (line 3), 'b' (line 4) and 2 more": at most `shown` names, so that a message about a
 // huge file stays short.
-inline std::string nameList(const std::vector<std::string>& names, const LineOf& line_of,
-                            std::size_t shown = 8) {
+template <class Line>
+std::string nameList(const std::vector<std::string>& names, const Line& line_of,
+                     std::size_t shown = 8) {
   std::string out;
   for (std::size_t i = 0; i < names.size() && i < shown; ++i) {
     if (i > 0) out += (i + 1 == names.size() ? " and " : ", ");
@@ -40,62 +41,89 @@ inline std::string nameList(const std::vector<std::string>& names, const LineOf&
 
 }  // namespace detail
 
-/// An empty string when every link of `model` is reached exactly once from its root through
-/// child joints; otherwise what is wrong, naming the links and joints (no file prefix).
-inline std::string treeProblem(const urdf::ModelInterface& model, const LineOf& link_line,
-                               const LineOf& joint_line) {
-  // Parent joints of each link, as the joint elements declare them.
-  std::map<std::string, std::vector<std::string>> parents;
-  for (const auto& [name, joint] : model.joints_)
-    if (joint) parents[joint->child_link_name].push_back(name);
-  for (const auto& [link, joints] : parents)
-    if (joints.size() > 1)
+/// An empty string when the joints connect the links into one tree (each link the child of
+/// at most one joint, exactly one root, every link reached from it); otherwise what is wrong,
+/// naming the links and joints (no file prefix). Joints that name a link not in `links`, or
+/// lack a parent or child, are left to urdfdom to report. `link_line` and `joint_line` map a
+/// name to " (line N)".
+template <class LinkLine, class JointLine>
+std::string treeProblem(const std::vector<std::string>& links, const std::vector<JointEdge>& joints,
+                        const LinkLine& link_line, const JointLine& joint_line) {
+  const std::set<std::string> known(links.begin(), links.end());
+  std::map<std::string, std::vector<const JointEdge*>> parents, children;  // by link
+  for (const JointEdge& j : joints) {
+    if (!known.count(j.parent) || !known.count(j.child)) continue;
+    parents[j.child].push_back(&j);
+    children[j.parent].push_back(&j);
+  }
+  for (const auto& [link, list] : parents)
+    if (list.size() > 1) {
+      std::vector<std::string> names;
+      for (const JointEdge* j : list) names.push_back(j->name);
       return "link '" + link + "'" + link_line(link) + " is the child of " +
-             std::to_string(joints.size()) + " joints, " + detail::nameList(joints, joint_line) +
+             std::to_string(names.size()) + " joints, " + detail::nameList(names, joint_line) +
              ": a URDF must be a tree, each link with at most one parent joint (this is a "
              "closed kinematic chain or a cycle)";
-
-  const urdf::LinkConstSharedPtr root = model.getRoot();
-  if (!root) return "no root link";
-  std::set<std::string> reached{root->name};
-  std::vector<urdf::LinkConstSharedPtr> stack{root};
-  while (!stack.empty()) {
-    const urdf::LinkConstSharedPtr link = stack.back();
-    stack.pop_back();
-    for (const auto& j : link->child_joints) {
-      if (!j) continue;
-      const urdf::LinkConstSharedPtr child = model.getLink(j->child_link_name);
-      if (child && reached.insert(child->name).second) stack.push_back(child);
     }
+
+  // Climbing parents from a link that is not reached from a root ends in a cycle.
+  auto cycleFrom = [&](const std::string& start, std::vector<std::string>& cycle_links,
+                       std::vector<std::string>& cycle_joints) {
+    std::vector<std::string> path;
+    std::map<std::string, std::size_t> seen;
+    std::string link = start;
+    while (!seen.count(link) && parents.count(link)) {
+      seen[link] = path.size();
+      path.push_back(link);
+      link = parents.at(link).front()->parent;
+    }
+    if (!seen.count(link)) return false;
+    cycle_links.assign(path.begin() + static_cast<std::ptrdiff_t>(seen[link]), path.end());
+    for (const auto& l : cycle_links) cycle_joints.push_back(parents.at(l).front()->name);
+    return true;
+  };
+  const std::set<std::string> distinct(links.begin(), links.end());
+  std::vector<std::string> roots;
+  for (const auto& l : distinct)
+    if (!parents.count(l)) roots.push_back(l);
+  if (roots.empty()) {
+    std::vector<std::string> cycle, cycle_joints;
+    if (!distinct.empty() && cycleFrom(*distinct.begin(), cycle, cycle_joints))
+      return "links " + detail::nameList(cycle, link_line) + " and joints " +
+             detail::nameList(cycle_joints, joint_line) +
+             " form a cycle, and every link has a parent joint: a URDF must be a tree with one "
+             "root link";
+    return std::string();  // no links at all: urdfdom says so
+  }
+  if (roots.size() > 1)
+    return std::to_string(roots.size()) + " links have no parent joint, " +
+           detail::nameList(roots, link_line) +
+           ": a URDF must be one tree with one root link (the others are not connected to it)";
+
+  const std::string& root = roots.front();
+  std::set<std::string> reached{root};
+  std::vector<std::string> stack{root};
+  while (!stack.empty()) {
+    const std::string link = stack.back();
+    stack.pop_back();
+    const auto c = children.find(link);
+    if (c == children.end()) continue;
+    for (const JointEdge* j : c->second)
+      if (reached.insert(j->child).second) stack.push_back(j->child);
   }
   std::vector<std::string> unreached;
-  for (const auto& [name, link] : model.links_)
-    if (!reached.count(name)) unreached.push_back(name);
+  for (const auto& l : distinct)
+    if (!reached.count(l)) unreached.push_back(l);
   if (unreached.empty()) return std::string();
-
-  // Only the root lacks a parent, so climbing from an unreached link ends in a cycle.
-  std::vector<std::string> path;
-  std::map<std::string, std::size_t> seen;
-  std::string link = unreached.front();
-  while (!seen.count(link) && path.size() <= model.links_.size()) {
-    seen[link] = path.size();
-    path.push_back(link);
-    const auto p = parents.find(link);
-    if (p == parents.end()) break;
-    link = model.joints_.at(p->second.front())->parent_link_name;
-  }
+  std::vector<std::string> cycle, cycle_joints;
   std::string msg;
-  if (seen.count(link)) {
-    const std::vector<std::string> cycle(path.begin() + seen[link], path.end());
-    std::vector<std::string> joints;
-    for (const auto& l : cycle) joints.push_back(parents.at(l).front());
+  if (cycleFrom(unreached.front(), cycle, cycle_joints))
     msg = "links " + detail::nameList(cycle, link_line) + " and joints " +
-          detail::nameList(joints, joint_line) +
-          " form a cycle that is not connected to the root link '" + root->name + "'";
-  } else {
+          detail::nameList(cycle_joints, joint_line) +
+          " form a cycle that is not connected to the root link '" + root + "'";
+  else  // cannot happen with one root, but say something true
     msg = "link '" + unreached.front() + "'" + link_line(unreached.front()) +
-          " is not connected to the root link '" + root->name + "'";
-  }
+          " is not connected to the root link '" + root + "'";
   return msg + "; " + std::to_string(unreached.size()) +
          " link(s) cannot be reached from the root: " + detail::nameList(unreached, link_line);
 }

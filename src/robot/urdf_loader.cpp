@@ -54,7 +54,15 @@ struct Scan {
   std::map<std::string, std::vector<ScannedCollision>> collisions;  // per link
   std::map<std::string, const TiXmlElement*> link_elements;
   std::map<std::string, const TiXmlElement*> joint_elements;
+  std::vector<std::string> link_order;            // document order
+  std::vector<urdf_tree::JointEdge> joint_edges;  // as the <parent>/<child> elements say
 };
+
+const char* linkOf(const TiXmlElement* joint, const char* tag) {
+  const TiXmlElement* e = joint->FirstChildElement(tag);
+  const char* link = e ? e->Attribute("link") : nullptr;
+  return link ? link : "";
+}
 
 Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
   Scan scan;
@@ -68,6 +76,7 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
       if (!name) xml::fail(file, e, "<joint> without a name");
       scan.joint_order.push_back(name);
       scan.joint_elements[name] = e;
+      scan.joint_edges.push_back({name, linkOf(e, "parent"), linkOf(e, "child")});
       for (const char* child : {"origin", "axis"}) {
         const TiXmlElement* c = e->FirstChildElement(child);
         if (!c) continue;
@@ -80,6 +89,7 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
     } else if (tag == "link") {
       if (!name) xml::fail(file, e, "<link> without a name");
       scan.link_elements[name] = e;
+      scan.link_order.push_back(name);
       auto& list = scan.collisions[name];
       for (const TiXmlElement* c = e->FirstChildElement("collision"); c;
            c = c->NextSiblingElement("collision"))
@@ -207,6 +217,19 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
   TiXmlDocument doc;
   xml::parse(doc, text, file);
   const Scan scan = scanDocument(doc, file);
+  // The joints must form a tree before urdfdom links them (see urdf_tree_check.h).
+  {
+    auto lineOf = [](const std::map<std::string, const TiXmlElement*>& elements) {
+      return [&elements](const std::string& name) {
+        const auto it = elements.find(name);
+        return it == elements.end() ? std::string()
+                                    : " (line " + std::to_string(it->second->Row()) + ")";
+      };
+    };
+    const std::string problem = urdf_tree::treeProblem(
+        scan.link_order, scan.joint_edges, lineOf(scan.link_elements), lineOf(scan.joint_elements));
+    if (!problem.empty()) throw std::runtime_error(file + ": " + problem);
+  }
 
   CaptureOutput capture;
   urdf::ModelInterfaceSharedPtr urdf;
@@ -222,19 +245,6 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
     std::string msg = file + ": urdfdom could not parse the robot";
     for (const auto& l : capture.lines) msg += "; " + l;
     throw std::runtime_error(msg);
-  }
-
-  {
-    auto lineOf = [](const std::map<std::string, const TiXmlElement*>& elements) {
-      return [&elements](const std::string& name) {
-        const auto it = elements.find(name);
-        return it == elements.end() ? std::string()
-                                    : " (line " + std::to_string(it->second->Row()) + ")";
-      };
-    };
-    const std::string problem =
-        urdf_tree::treeProblem(*urdf, lineOf(scan.link_elements), lineOf(scan.joint_elements));
-    if (!problem.empty()) throw std::runtime_error(file + ": " + problem);
   }
 
   RobotModel model;

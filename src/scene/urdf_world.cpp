@@ -52,7 +52,15 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& p, const std::string& where) {
 struct XmlFacts {
   std::map<std::string, int> collisions;
   std::map<std::string, int> link_lines, joint_lines;
+  std::vector<std::string> links;                 // document order
+  std::vector<urdf_tree::JointEdge> joint_edges;  // as the <parent>/<child> elements say
 };
+
+const char* linkOf(const TiXmlElement* joint, const char* tag) {
+  const TiXmlElement* e = joint->FirstChildElement(tag);
+  const char* link = e ? e->Attribute("link") : nullptr;
+  return link ? link : "";
+}
 
 XmlFacts scanXml(const std::string& text, const std::string& path) {
   TiXmlDocument doc;
@@ -74,15 +82,22 @@ XmlFacts scanXml(const std::string& text, const std::string& path) {
          c = c->NextSiblingElement("collision"))
       ++n;
     facts.collisions[name ? name : ""] += n;
-    if (name) facts.link_lines.emplace(name, link->Row());
+    if (name) {
+      facts.link_lines.emplace(name, link->Row());
+      facts.links.push_back(name);
+    }
   }
   for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint;
        joint = joint->NextSiblingElement("joint"))
-    if (const char* name = joint->Attribute("name")) facts.joint_lines.emplace(name, joint->Row());
+    if (const char* name = joint->Attribute("name")) {
+      facts.joint_lines.emplace(name, joint->Row());
+      facts.joint_edges.push_back({name, linkOf(joint, "parent"), linkOf(joint, "child")});
+    }
   return facts;
 }
 
-urdf_tree::LineOf lineOf(const std::map<std::string, int>& lines) {
+// " (line N)" of a link or joint, or "" when the XML did not name it.
+auto lineOf(const std::map<std::string, int>& lines) {
   return [&lines](const std::string& name) {
     const auto it = lines.find(name);
     return it == lines.end() ? std::string() : " (line " + std::to_string(it->second) + ")";
@@ -103,6 +118,10 @@ class UrdfWorldReader {
     scene_detail::checkXmlDepth(text, path_, options_.limits);
     const XmlFacts xml = scanXml(text, path_);
     const auto& xml_counts = xml.collisions;
+    // The joints must form a tree before urdfdom links them (see urdf_tree_check.h).
+    const std::string tree_problem = urdf_tree::treeProblem(
+        xml.links, xml.joint_edges, lineOf(xml.link_lines), lineOf(xml.joint_lines));
+    if (!tree_problem.empty()) throw SceneError(path_ + ": " + tree_problem);
 
     CapturingHandler capture;
     urdf::ModelInterfaceSharedPtr model;
@@ -115,9 +134,6 @@ class UrdfWorldReader {
       for (const auto& m : capture.messages) msg += "; " + m;
       throw SceneError(msg);
     }
-    const std::string tree_problem =
-        urdf_tree::treeProblem(*model, lineOf(xml.link_lines), lineOf(xml.joint_lines));
-    if (!tree_problem.empty()) throw SceneError(path_ + ": " + tree_problem);
     const std::size_t collision_count = [&] {
       std::size_t n = 0;
       for (const auto& [name, link] : model->links_) n += link->collision_array.size();

@@ -80,6 +80,25 @@ BOOST_AUTO_TEST_CASE(a_detached_cycle_is_an_error) {
              "cannot be reached from the root: 'c' (line 3) and 'd' (line 4)");
 }
 
+BOOST_AUTO_TEST_CASE(a_cycle_through_every_link_and_a_second_root_are_errors) {
+  // No link lacks a parent: urdfdom would only say that it found no root.
+  const std::string cycle = std::string("<robot name=\"r\">\n") + "  <link name=\"a\">" + kBox +
+                            "</link>\n  <link name=\"b\"/>\n" + joint("ja", "a", "b") +
+                            joint("jb", "b", "a") + "</robot>\n";
+  BOOST_TEST(loadError(cycle) ==
+             "tree.urdf: links 'a' (line 2) and 'b' (line 3) and joints 'jb' (line 5) and 'ja' "
+             "(line 4) form a cycle, and every link has a parent joint: a URDF must be a tree "
+             "with one root link");
+  // A link that no joint names is a second root, not connected to the first.
+  const std::string apart = std::string("<robot name=\"r\">\n") +
+                            "  <link name=\"base\"/>\n  <link name=\"a\"/>\n"
+                            "  <link name=\"x\">" +
+                            kBox + "</link>\n" + joint("ja", "base", "a") + "</robot>\n";
+  BOOST_TEST(loadError(apart) ==
+             "tree.urdf: 2 links have no parent joint, 'base' (line 2) and 'x' (line 4): a URDF "
+             "must be one tree with one root link (the others are not connected to it)");
+}
+
 BOOST_AUTO_TEST_CASE(long_cycles_are_named_briefly) {
   // A detached cycle of 100 links: the message names 8 of them and counts the rest.
   std::string text = "<robot name=\"r\">\n  <link name=\"base\"/>\n";

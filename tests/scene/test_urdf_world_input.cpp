@@ -78,6 +78,14 @@ BOOST_AUTO_TEST_CASE(a_detached_cycle_is_an_error_naming_links_and_joints) {
                       "'e' (line 7)"));
 }
 
+BOOST_AUTO_TEST_CASE(a_link_apart_from_the_tree_is_an_error) {
+  const std::string text = std::string("<robot name=\"w\">\n") + "  <link name=\"base\">" + kBox +
+                           "</link>\n  <link name=\"shelf\">" + kBox + "</link>\n</robot>\n";
+  BOOST_TEST(worldError("apart.urdf", text) ==
+             ": 2 links have no parent joint, 'base' (line 2) and 'shelf' (line 3): a URDF must "
+             "be one tree with one root link (the others are not connected to it)");
+}
+
 BOOST_AUTO_TEST_CASE(a_long_chain_is_walked_without_recursion) {
   const int n = 20000;
   std::string text = "<robot name=\"chain\">\n<link name=\"l0\"/>\n";
