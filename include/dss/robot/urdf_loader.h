@@ -13,7 +13,10 @@
 // urdfdom accepts, are errors naming the links and joints. A mesh `scale` component of zero is
 // an error; a negative one mirrors the mesh (the hull is that of the mirrored vertices, as in
 // the URDF-world reader). Input budgets (XML nesting, vertices per mesh) are
-// LoadOptions::limits (dss/robot/input_limits.h).
+// LoadOptions::limits (dss/robot/input_limits.h). Elements and attributes that URDF does not
+// define (e.g. <gazebo>, <transmission>, vendor extensions) are ignored, as urdfdom and so
+// MoveIt ignore them; inside <collision><geometry>, an unknown tag is a dropped collision
+// (above), never skipped silently.
 // Not thread safe: urdfdom reports through the process-wide console_bridge handler, which is
 // swapped for the duration of a load to capture its messages.
 #pragma once

@@ -20,7 +20,8 @@
 // accepts, are errors naming the links and joints with their lines; the poses are computed
 // without recursion. A mesh scale component of zero (or not finite) is an error; a negative
 // one mirrors the mesh, as in the robot loader. Input budgets (XML nesting checked on the raw
-// text before parsing, obstacles, mesh vertices) are SceneLoadOptions::limits.
+// text before parsing, obstacles, mesh vertices) are SceneLoadOptions::limits. Elements that
+// URDF does not define are ignored, as urdfdom ignores them.
 #pragma once
 
 #include <string>
