@@ -204,6 +204,10 @@ struct LoadedProblem {
 
 LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files) {
   const dss::PlanRequest req = dss::loadPlanRequestYaml(files.request);
+  // Every stored warning reaches the user: the request's here, the scene's with the
+  // problem's below, the robot's and the SRDF's once in run().
+  for (const auto& w : req.warnings)
+    std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
   dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
   dss::Scene loaded = a.render.empty() ? dss::Scene{} : scene;
   const std::map<std::string, double> start = req.startState();
@@ -689,6 +693,7 @@ int run(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(a.seed);
   const dss::LoadedRobot robot = dss::loadRobot(a.robot, a.srdf);
+  for (const auto& w : robot.warnings()) std::cerr << "dss_plan: warning: " << w << "\n";
   if (a.benchmark) return runBenchmark(a, robot, problems);
 
   std::vector<double> times;

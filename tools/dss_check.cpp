@@ -167,6 +167,9 @@ int run(int argc, char** argv) {
   ompl::RNG::setSeed(seed);
 
   dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  // Every stored warning reaches the user: the robot's and the SRDF's here, the scene's
+  // through the problem's warnings below.
+  for (const auto& w : r.warnings()) std::cerr << "dss_check: warning: " << w << "\n";
   if (!states.empty()) {
     // A CSV may hold joint values outside the URDF limits (MotionBenchMaker's Panda fingers at
     // 0.065 against 0.04). The model is built with those limits widened to cover them, so that

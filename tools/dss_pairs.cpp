@@ -47,6 +47,8 @@ Input line: {"id": "p1", "a": SHAPE, "b": SHAPE}, SHAPE one of
 each with an optional "pose":{"position":[x,y,z],"orientation":[qx,qy,qz,qw]}
 (world = R(q) local + position; q normalised; identity when absent). A posed convex shape
 is posed vertex by vertex once, and decided as the hull of those world points.
+A field the object does not have (e.g. "radius" on a box), a key given twice in one object
+and arrays or objects nested more than 64 deep are errors.
 
 Options:
   --algo A           dss (default), gjk, hybrid or fcl (FCL 0.7, fcl::collide with a

@@ -5,11 +5,16 @@
 // fcl::Cone) or convex (a point set), each with an optional
 // `"pose":{"position":[x,y,z],"orientation":[qx,qy,qz,qw]}` (ROS order; identity when
 // absent). Every input error is reported as `PairsInputError` carrying the 1-based line
-// number; the caller prefixes the file name. Numbers go through nlohmann::json, whose
+// number; the caller prefixes the file name. A key that the object at its place does not have
+// (e.g. "radius" on a box, "Pose") and a key given twice in one object are errors: JSON
+// parsers disagree on duplicates (nlohmann keeps the last), so the file is ambiguous. Nesting
+// deeper than PairsInputLimits::max_depth is refused on the raw text, before parsing; values
+// quoted in messages are cut short. Numbers go through nlohmann::json, whose
 // floating-point reader is strtod (correctly rounded), so every decimal in the file becomes
 // exactly the double it denotes.
 #pragma once
 
+#include <cstddef>
 #include <istream>
 #include <stdexcept>
 #include <string>
@@ -54,11 +59,21 @@ class PairsInputError : public std::runtime_error {
 };
 
 /// Parses one line (no trailing newline). Throws PairsInputError.
+/// Input budgets of a pairs file.
+struct PairsInputLimits {
+  /// Array and object nesting of one line, a line's object being 1 (largest in the shared
+  /// samples: 4, vertices of a convex shape).
+  static constexpr std::size_t kDefaultMaxDepth = 64;
+  std::size_t max_depth = kDefaultMaxDepth;
+};
+
 PairSpec parsePairLine(const std::string& text, int line);
+PairSpec parsePairLine(const std::string& text, int line, const PairsInputLimits& limits);
 
 /// Reads every line of `in`. A final newline is allowed; any other empty or blank line is an
 /// error. An empty input gives no pairs. Throws PairsInputError.
 std::vector<PairSpec> readPairs(std::istream& in);
+std::vector<PairSpec> readPairs(std::istream& in, const PairsInputLimits& limits);
 
 /// The rotation of a quaternion in ROS order (x y z w), normalised. A zero or non-finite
 /// quaternion throws std::invalid_argument. Exactly unit quaternions are used unchanged.

@@ -6,15 +6,22 @@
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/robot/joint_state.h"
-#include "dss/robot/urdf_loader.h"
 
 namespace dss {
 
-LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path) {
+std::vector<std::string> LoadedRobot::warnings() const {
+  std::vector<std::string> out;
+  if (model) out = model->warnings;
+  if (srdf) out.insert(out.end(), srdf->warnings.begin(), srdf->warnings.end());
+  return out;
+}
+
+LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path,
+                      const LoadOptions& options) {
   LoadedRobot r;
-  r.model = std::make_shared<const RobotModel>(loadUrdf(urdf_path));
+  r.model = std::make_shared<const RobotModel>(loadUrdf(urdf_path, options));
   if (!srdf_path.empty()) {
-    r.srdf = loadSrdf(srdf_path);
+    r.srdf = loadSrdf(srdf_path, options.limits);
     const auto problems = checkSrdfAgainstModel(*r.model, *r.srdf);
     if (!problems.empty()) throw std::runtime_error(srdf_path + ": " + problems.front());
   }
@@ -36,6 +43,7 @@ std::vector<int> resolveGroup(const LoadedRobot& robot, std::string* group) {
 ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
                       const std::map<std::string, double>& start, double prune_margin) {
   ModelSetup s;
+  s.warnings = scene.warnings;  // the scene is consumed below; its warnings stay with the setup
   s.group_active = resolveGroup(robot, &group);
   s.group = group;
   std::vector<std::string> ignored;

@@ -22,25 +22,41 @@ extern "C" {
 namespace dss::mesh {
 namespace {
 
-void appendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& X_parent,
-                const Eigen::Vector3d& scale, TriangleMesh& out) {
-  const aiMatrix4x4 X = X_parent * node->mTransformation;
-  for (unsigned m = 0; m < node->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
-    const int base = static_cast<int>(out.vertices.size());
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D p = X * mesh->mVertices[v];
-      out.vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+// Appends the vertices and triangles of every node's meshes, walking the node tree with an
+// explicit stack (a file may nest nodes deeply). A node that instances a mesh again adds its
+// vertices again, so the budget is checked before each mesh is copied. A scale with an odd
+// number of negative components mirrors the mesh; the triangles are then flipped so that they
+// stay outward.
+void appendNodes(const aiScene* scene, const Eigen::Vector3d& scale, std::size_t max_vertices,
+                 const std::string& path, TriangleMesh& out) {
+  const bool mirrored = scale.x() * scale.y() * scale.z() < 0;
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{{scene->mRootNode, aiMatrix4x4()}};
+  while (!stack.empty()) {
+    const auto [node, X_parent] = stack.back();
+    stack.pop_back();
+    const aiMatrix4x4 X = X_parent * node->mTransformation;
+    for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+      const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
+      if (mesh->mNumVertices > max_vertices - out.vertices.size())
+        throw std::length_error("mesh " + path + " has more than " + std::to_string(max_vertices) +
+                                " vertices");
+      const int base = static_cast<int>(out.vertices.size());
+      for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+        const aiVector3D p = X * mesh->mVertices[v];
+        out.vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+      }
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const aiFace& face = mesh->mFaces[f];
+        if (face.mNumIndices != 3) continue;  // points and lines add vertices only
+        const int a = base + int(face.mIndices[0]), b = base + int(face.mIndices[1]),
+                  c = base + int(face.mIndices[2]);
+        out.triangles.push_back(mirrored ? std::array<int, 3>{a, c, b}
+                                         : std::array<int, 3>{a, b, c});
+      }
     }
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines add vertices only
-      out.triangles.push_back({base + int(face.mIndices[0]), base + int(face.mIndices[1]),
-                               base + int(face.mIndices[2])});
-    }
+    // Children pushed in reverse so that they are visited in file order.
+    for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back({node->mChildren[c], X});
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c)
-    appendNode(scene, node->mChildren[c], X, scale, out);
 }
 
 std::vector<Eigen::Vector3d> distinctPoints(std::vector<Eigen::Vector3d> pts) {
@@ -128,7 +144,8 @@ void checkPoints(const std::vector<Eigen::Vector3d>& points, const std::string& 
 
 }  // namespace
 
-TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
+TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale,
+                      std::size_t max_vertices) {
   if (!scale.allFinite()) throw std::runtime_error("mesh " + path + ": non-finite scale");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -141,7 +158,7 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   if (!scene || !scene->mRootNode)
     throw std::runtime_error("cannot read mesh " + path + ": " + importer.GetErrorString());
   TriangleMesh out;
-  appendNode(scene, scene->mRootNode, aiMatrix4x4(), scale, out);
+  appendNodes(scene, scale, max_vertices, path, out);
   if (out.vertices.empty()) throw std::runtime_error("mesh " + path + " has no vertices");
   for (const auto& v : out.vertices)
     if (!v.allFinite()) throw std::runtime_error("mesh " + path + " has a non-finite vertex");

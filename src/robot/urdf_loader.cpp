@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "../common/urdf_tree_check.h"
 #include "dss/mesh/mesh.h"
 #include "xml_util.h"
 
@@ -53,7 +54,15 @@ struct Scan {
   std::map<std::string, std::vector<ScannedCollision>> collisions;  // per link
   std::map<std::string, const TiXmlElement*> link_elements;
   std::map<std::string, const TiXmlElement*> joint_elements;
+  std::vector<std::string> link_order;            // document order
+  std::vector<urdf_tree::JointEdge> joint_edges;  // as the <parent>/<child> elements say
 };
+
+const char* linkOf(const TiXmlElement* joint, const char* tag) {
+  const TiXmlElement* e = joint->FirstChildElement(tag);
+  const char* link = e ? e->Attribute("link") : nullptr;
+  return link ? link : "";
+}
 
 Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
   Scan scan;
@@ -67,6 +76,7 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
       if (!name) xml::fail(file, e, "<joint> without a name");
       scan.joint_order.push_back(name);
       scan.joint_elements[name] = e;
+      scan.joint_edges.push_back({name, linkOf(e, "parent"), linkOf(e, "child")});
       for (const char* child : {"origin", "axis"}) {
         const TiXmlElement* c = e->FirstChildElement(child);
         if (!c) continue;
@@ -79,6 +89,7 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
     } else if (tag == "link") {
       if (!name) xml::fail(file, e, "<link> without a name");
       scan.link_elements[name] = e;
+      scan.link_order.push_back(name);
       auto& list = scan.collisions[name];
       for (const TiXmlElement* c = e->FirstChildElement("collision"); c;
            c = c->NextSiblingElement("collision"))
@@ -142,6 +153,13 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
         scale = Eigen::Vector3d(v[0], v[1], v[2]);
       else
         xml::fail(file, g, what + " <mesh> scale '" + s + "': expected 1 or 3 numbers");
+      // Zero flattens the mesh (to a plane, a line or a point); a negative component mirrors
+      // it, which URDF allows: the hull is that of the mirrored vertices.
+      for (int i = 0; i < 3; ++i)
+        if (scale[i] == 0)
+          xml::fail(file, g,
+                    what + " <mesh> scale '" + s + "': component " + "xyz"[i] +
+                        " is zero (the mesh would collapse); scales must be non-zero");
     }
     std::vector<std::string> tried;
     const auto path = resolveMeshUri(uri, base_dir, options.mesh_paths, &tried);
@@ -160,9 +178,15 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
     const auto key = std::make_pair(*path, std::array<double, 3>{scale.x(), scale.y(), scale.z()});
     auto it = cache.hulls.find(key);
     if (it == cache.hulls.end()) {
+      const std::size_t max_vertices = options.limits.max_mesh_vertices;
       try {
-        const mesh::TriangleMesh m = mesh::loadMesh(*path, scale);
+        const mesh::TriangleMesh m = mesh::loadMesh(*path, scale, max_vertices);
         it = cache.hulls.emplace(key, mesh::convexHull(m.vertices, out.description)).first;
+      } catch (const std::length_error& e) {
+        xml::fail(file, g,
+                  what + ": " + e.what() +
+                      " (RobotInputLimits::max_mesh_vertices; raise it with "
+                      "LoadOptions::limits.max_mesh_vertices)");
       } catch (const std::exception& e) {
         xml::fail(file, g, what + ": " + e.what());
       }
@@ -188,9 +212,24 @@ RobotModel loadUrdf(const std::string& path, const LoadOptions& options) {
 
 RobotModel loadUrdfString(const std::string& text, const std::string& file,
                           const std::string& base_dir, const LoadOptions& options) {
+  // tinyxml and urdfdom parse recursively: bound the nesting before either sees the text.
+  xml::checkDepth(text, file, options.limits.max_xml_depth, "LoadOptions::limits.max_xml_depth");
   TiXmlDocument doc;
   xml::parse(doc, text, file);
   const Scan scan = scanDocument(doc, file);
+  // The joints must form a tree before urdfdom links them (see urdf_tree_check.h).
+  {
+    auto lineOf = [](const std::map<std::string, const TiXmlElement*>& elements) {
+      return [&elements](const std::string& name) {
+        const auto it = elements.find(name);
+        return it == elements.end() ? std::string()
+                                    : " (line " + std::to_string(it->second->Row()) + ")";
+      };
+    };
+    const std::string problem = urdf_tree::treeProblem(
+        scan.link_order, scan.joint_edges, lineOf(scan.link_elements), lineOf(scan.joint_elements));
+    if (!problem.empty()) throw std::runtime_error(file + ": " + problem);
+  }
 
   CaptureOutput capture;
   urdf::ModelInterfaceSharedPtr urdf;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "../common/nesting_scan.h"
+
 namespace dss::xml {
 
 inline std::string where(const std::string& file, const TiXmlElement* e) {
@@ -21,6 +23,18 @@ inline std::string where(const std::string& file, const TiXmlElement* e) {
 [[noreturn]] inline void fail(const std::string& file, const TiXmlElement* e,
                               const std::string& what) {
   throw std::runtime_error(where(file, e) + ": " + what);
+}
+
+/// Throws when the element nesting of `text` exceeds `max_depth` (checked on the raw text, so
+/// before tinyxml or urdfdom recurse into it); `raise_with` names the setting that raises it.
+inline void checkDepth(const std::string& text, const std::string& file, std::size_t max_depth,
+                       const std::string& raise_with) {
+  const input_scan::NestingExcess e = input_scan::xmlNesting(text, max_depth);
+  if (e.exceeded)
+    throw std::runtime_error(
+        file + ":" + std::to_string(e.line) + ":" + std::to_string(e.column) +
+        ": XML element nesting exceeds the limit of " + std::to_string(max_depth) +
+        " (RobotInputLimits::max_xml_depth; raise it with " + raise_with + ")");
 }
 
 /// Parses a whole document; malformed XML throws with the line and column.

@@ -1,6 +1,8 @@
 // Reader of moveit_msgs/MotionPlanRequest YAML (joint-space requests).
 #include "dss/scene/plan_request.h"
 
+#include <initializer_list>
+
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
 #include "yaml_util.h"
@@ -16,12 +18,55 @@ std::map<std::string, double> PlanRequest::startState() const {
   return m;
 }
 
+namespace {
+
+// Fields of the messages read (moveit_msgs as of ROS Noetic and ROS 2).
+constexpr std::initializer_list<const char*> kMotionPlanRequestKeys = {
+    "workspace_parameters",
+    "start_state",
+    "goal_constraints",
+    "path_constraints",
+    "trajectory_constraints",
+    "reference_trajectories",
+    "pipeline_id",
+    "planner_id",
+    "group_name",
+    "num_planning_attempts",
+    "allowed_planning_time",
+    "max_velocity_scaling_factor",
+    "max_acceleration_scaling_factor",
+    "cartesian_speed_end_effector_link",
+    "cartesian_speed_limited_link",
+    "max_cartesian_speed"};
+constexpr std::initializer_list<const char*> kRobotStateKeys = {
+    "joint_state", "multi_dof_joint_state", "attached_collision_objects", "is_diff"};
+constexpr std::initializer_list<const char*> kConstraintsKeys = {
+    "name", "joint_constraints", "position_constraints", "orientation_constraints",
+    "visibility_constraints"};
+constexpr std::initializer_list<const char*> kJointConstraintKeys = {
+    "joint_name", "position", "tolerance_above", "tolerance_below", "weight"};
+
+}  // namespace
+
 PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& source) {
-  const YamlReader y(source);
-  const YAML::Node root = y.load(text);
-  if (!root.IsMap()) y.fail(root, "expected a MotionPlanRequest mapping at the top level");
+  return parsePlanRequestYaml(text, source, PlanRequestOptions{});
+}
+
+PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& source,
+                                 const PlanRequestOptions& options) {
   PlanRequest r;
   r.source = source;
+  YamlReader y(source);
+  y.setUnknownKeyPolicy(options.unknown_keys_are_warnings, &r.warnings,
+                        "PlanRequestOptions::unknown_keys_are_warnings");
+  const YAML::Node root = y.load(text);
+  if (!root.IsMap()) y.fail(root, "expected a MotionPlanRequest mapping at the top level");
+  y.checkKeys(root, "request", "moveit_msgs/MotionPlanRequest", kMotionPlanRequestKeys);
+  const std::size_t max_values = options.limits.max_request_joint_values;
+  auto overLimit = [&](const YAML::Node& n, const std::string& what) {
+    y.fail(n, scene_detail::overLimit(what, max_values, "max_request_joint_values",
+                                      "PlanRequestOptions"));
+  };
   r.group_name = y.string(y.require(root, "group_name", "request"), "group_name");
   if (r.group_name.empty()) y.fail(root["group_name"], "request: empty group_name");
   if (YamlReader::has(root, "planner_id"))
@@ -32,8 +77,11 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
     r.num_planning_attempts = y.integer(root["num_planning_attempts"], "num_planning_attempts");
 
   const YAML::Node start = y.require(root, "start_state", "request");
+  y.checkKeys(start, "start_state", "moveit_msgs/RobotState", kRobotStateKeys);
   if (YamlReader::has(start, "joint_state")) {
     const YAML::Node js = start["joint_state"];
+    y.checkKeys(js, "start_state.joint_state", "sensor_msgs/JointState",
+                {"header", "name", "position", "velocity", "effort"});
     const YAML::Node names =
         y.sequence(y.require(js, "name", "start_state.joint_state"), "start_state name");
     const YAML::Node pos =
@@ -41,6 +89,8 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
     if (names.size() != pos.size())
       y.fail(js, "start_state.joint_state: " + std::to_string(names.size()) + " names but " +
                      std::to_string(pos.size()) + " positions");
+    if (names.size() > max_values)
+      overLimit(names, "start_state: " + std::to_string(names.size()) + " joints");
     for (std::size_t i = 0; i < names.size(); ++i) {
       r.start_names.push_back(y.string(names[i], "start_state name"));
       r.start_positions.push_back(
@@ -49,6 +99,8 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
   }
   if (YamlReader::has(start, "multi_dof_joint_state")) {
     const YAML::Node md = start["multi_dof_joint_state"];
+    y.checkKeys(md, "start_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
+                {"header", "joint_names", "transforms", "twist", "wrench"});
     if (YamlReader::has(md, "transforms")) {
       const YAML::Node tr = y.sequence(md["transforms"], "multi_dof_joint_state.transforms");
       for (const auto& t : tr)
@@ -66,10 +118,22 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
   const YAML::Node goals =
       y.sequence(y.require(root, "goal_constraints", "request"), "goal_constraints");
   if (goals.size() == 0) y.fail(goals, "request: goal_constraints is empty");
+  // Start joints and goal joint constraints together, counted before any goal is read:
+  // aliases let a short text repeat long lists.
+  std::size_t constraints = 0;
+  for (std::size_t g = 0; g < goals.size(); ++g) {
+    const YAML::Node jcs = YamlReader::optional(goals[g], "joint_constraints");
+    if (jcs.IsDefined() && jcs.IsSequence()) constraints += jcs.size();
+  }
+  if (constraints > max_values - r.start_names.size())
+    overLimit(goals, "goal_constraints: " + std::to_string(constraints) + " joint constraints in " +
+                         std::to_string(goals.size()) + " goals (and " +
+                         std::to_string(r.start_names.size()) + " start joints)");
   for (std::size_t g = 0; g < goals.size(); ++g) {
     const std::string ge = "goal_constraints[" + std::to_string(g) + "]";
     const YAML::Node gc = goals[g];
     if (!gc.IsMap()) y.fail(gc, ge + ": expected a mapping");
+    y.checkKeys(gc, ge, "moveit_msgs/Constraints", kConstraintsKeys);
     for (const char* other :
          {"position_constraints", "orientation_constraints", "visibility_constraints"}) {
       const YAML::Node o = YamlReader::optional(gc, other);
@@ -82,6 +146,8 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
         y.sequence(y.require(gc, "joint_constraints", ge), ge + " joint_constraints");
     if (jcs.size() == 0) y.fail(jcs, ge + ": no joint constraints");
     for (const auto& jc : jcs) {
+      y.checkKeys(jc, ge + " joint constraint", "moveit_msgs/JointConstraint",
+                  kJointConstraintKeys);
       JointConstraint c;
       c.joint_name = y.string(y.require(jc, "joint_name", ge + " joint constraint"), "joint_name");
       const std::string ce = ge + " joint '" + c.joint_name + "'";
@@ -121,7 +187,11 @@ std::vector<std::string> checkRequestJoints(const PlanRequest& request,
 }
 
 PlanRequest loadPlanRequestYaml(const std::string& path) {
-  return parsePlanRequestYaml(scene_detail::readTextFile(path), path);
+  return parsePlanRequestYaml(scene_detail::readTextFile(path), path, PlanRequestOptions{});
+}
+
+PlanRequest loadPlanRequestYaml(const std::string& path, const PlanRequestOptions& options) {
+  return parsePlanRequestYaml(scene_detail::readTextFile(path), path, options);
 }
 
 }  // namespace dss

@@ -2,6 +2,7 @@
 #include "dss/scene/planning_scene_yaml.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <sstream>
 
 #include "dss/scene/scene_error.h"
@@ -14,6 +15,43 @@ namespace {
 
 using scene_detail::YamlReader;
 
+// Fields of the messages read (moveit_msgs as of ROS Noetic and ROS 2; a key outside these is
+// what makes a ROS message fail to deserialize).
+constexpr std::initializer_list<const char*> kPlanningSceneKeys = {"name",
+                                                                   "robot_state",
+                                                                   "robot_model_name",
+                                                                   "fixed_frame_transforms",
+                                                                   "allowed_collision_matrix",
+                                                                   "link_padding",
+                                                                   "link_scale",
+                                                                   "object_colors",
+                                                                   "world",
+                                                                   "is_diff"};
+constexpr std::initializer_list<const char*> kPlanningSceneOrWorldKeys = {
+    "name",
+    "robot_state",
+    "robot_model_name",
+    "fixed_frame_transforms",
+    "allowed_collision_matrix",
+    "link_padding",
+    "link_scale",
+    "object_colors",
+    "world",
+    "is_diff",
+    "collision_objects",
+    "octomap"};
+constexpr std::initializer_list<const char*> kRobotStateKeys = {
+    "joint_state", "multi_dof_joint_state", "attached_collision_objects", "is_diff"};
+constexpr std::initializer_list<const char*> kJointStateKeys = {"header", "name", "position",
+                                                                "velocity", "effort"};
+constexpr std::initializer_list<const char*> kMultiDofJointStateKeys = {
+    "header", "joint_names", "transforms", "twist", "wrench"};
+constexpr std::initializer_list<const char*> kCollisionObjectKeys = {
+    "header",          "pose",           "id",         "type",   "primitives",
+    "primitive_poses", "meshes",         "mesh_poses", "planes", "plane_poses",
+    "subframe_names",  "subframe_poses", "operation"};
+constexpr std::initializer_list<const char*> kHeaderKeys = {"seq", "stamp", "frame_id"};
+
 // shape_msgs/SolidPrimitive type numbers.
 enum PrimitiveType { kBoxType = 1, kSphereType = 2, kCylinderType = 3, kConeType = 4 };
 
@@ -25,13 +63,25 @@ std::string lower(std::string s) {
 class SceneYamlReader {
  public:
   SceneYamlReader(const std::string& source, const SceneLoadOptions& options)
-      : y_(source), options_(options), base_dir_(scene_detail::parentDir(source)) {}
+      : y_(source),
+        options_(options),
+        limits_(options.limits),
+        base_dir_(scene_detail::parentDir(source)),
+        mesh_budget_(limits_) {}
 
   Scene read(const std::string& text) {
     Scene scene;
     scene.source = y_.file();
+    y_.setUnknownKeyPolicy(options_.unknown_keys_are_warnings, &scene.warnings,
+                           "SceneLoadOptions::unknown_keys_are_warnings");
     const YAML::Node root = y_.load(text);
     if (!root.IsMap()) y_.fail(root, "expected a PlanningScene mapping at the top level");
+    const bool has_world = YamlReader::has(root, "world");
+    if (has_world)
+      y_.checkKeys(root, "planning scene", "moveit_msgs/PlanningScene", kPlanningSceneKeys);
+    else  // a PlanningScene without `world`, or a bare PlanningSceneWorld
+      y_.checkKeys(root, "planning scene", "moveit_msgs/PlanningScene (or PlanningSceneWorld)",
+                   kPlanningSceneOrWorldKeys);
 
     if (YamlReader::has(root, "name")) scene.name = y_.string(root["name"], "name");
     if (YamlReader::has(root, "robot_model_name"))
@@ -44,13 +94,29 @@ class SceneYamlReader {
     if (YamlReader::has(root, "link_padding") || YamlReader::has(root, "link_scale"))
       scene.warnings.push_back(y_.file() + ": link_padding/link_scale ignored");
 
-    const bool has_world = YamlReader::has(root, "world");
     if (has_world || YamlReader::has(root, "collision_objects")) {
       const YAML::Node world = has_world ? root["world"] : root;  // or a bare World message
       if (!world.IsMap()) y_.fail(world, "world: expected a mapping");
+      if (has_world)
+        y_.checkKeys(world, "world", "moveit_msgs/PlanningSceneWorld",
+                     {"collision_objects", "octomap"});
       if (YamlReader::has(world, "collision_objects")) {
         const YAML::Node objects =
             y_.sequence(world["collision_objects"], "world.collision_objects");
+        // Aliases let a short text repeat long lists: count the obstacles (primitives and
+        // meshes of all objects) before reading any, and refuse too many at once.
+        std::size_t shapes = 0;
+        for (std::size_t i = 0; i < objects.size(); ++i)
+          for (const char* list : {"primitives", "meshes"}) {
+            const YAML::Node l = YamlReader::optional(objects[i], list);
+            if (l.IsDefined() && l.IsSequence()) shapes += l.size();
+          }
+        if (shapes > limits_.max_obstacles)
+          y_.fail(objects,
+                  scene_detail::overLimit("world.collision_objects: " + std::to_string(shapes) +
+                                              " primitives and meshes in " +
+                                              std::to_string(objects.size()) + " objects",
+                                          limits_.max_obstacles, "max_obstacles"));
         for (std::size_t i = 0; i < objects.size(); ++i) readObject(objects[i], i, scene);
       }
       if (YamlReader::has(world, "octomap")) {
@@ -77,8 +143,10 @@ class SceneYamlReader {
  private:
   void readRobotState(const YAML::Node& rs, Scene& scene) {
     if (!rs.IsMap()) y_.fail(rs, "robot_state: expected a mapping");
+    y_.checkKeys(rs, "robot_state", "moveit_msgs/RobotState", kRobotStateKeys);
     if (YamlReader::has(rs, "joint_state")) {
       const YAML::Node js = rs["joint_state"];
+      y_.checkKeys(js, "robot_state.joint_state", "sensor_msgs/JointState", kJointStateKeys);
       if (YamlReader::has(js, "name") || YamlReader::has(js, "position")) {
         const YAML::Node names =
             y_.sequence(y_.require(js, "name", "robot_state.joint_state"), "joint_state.name");
@@ -95,6 +163,8 @@ class SceneYamlReader {
     }
     if (YamlReader::has(rs, "multi_dof_joint_state")) {
       const YAML::Node md = rs["multi_dof_joint_state"];
+      y_.checkKeys(md, "robot_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
+                   kMultiDofJointStateKeys);
       if (YamlReader::has(md, "transforms")) {
         const YAML::Node tr = y_.sequence(md["transforms"], "multi_dof_joint_state.transforms");
         const YAML::Node names = YamlReader::optional(md, "joint_names");
@@ -115,6 +185,8 @@ class SceneYamlReader {
   void readFixedFrames(const YAML::Node& list, Scene& scene) {
     y_.sequence(list, "fixed_frame_transforms");
     for (const auto& t : list) {
+      y_.checkKeys(t, "fixed_frame_transforms entry", "geometry_msgs/TransformStamped",
+                   {"header", "child_frame_id", "transform"});
       const std::string child =
           y_.string(y_.require(t, "child_frame_id", "fixed_frame_transforms"), "child_frame_id");
       const Eigen::Isometry3d X = y_.transform(
@@ -126,9 +198,16 @@ class SceneYamlReader {
 
   void readAcm(const YAML::Node& acm, Scene& scene) {
     if (!acm.IsMap()) y_.fail(acm, "allowed_collision_matrix: expected a mapping");
+    y_.checkKeys(acm, "allowed_collision_matrix", "moveit_msgs/AllowedCollisionMatrix",
+                 {"entry_names", "entry_values", "default_entry_names", "default_entry_values"});
     if (YamlReader::has(acm, "entry_names") || YamlReader::has(acm, "entry_values")) {
       const YAML::Node names =
           y_.sequence(y_.require(acm, "entry_names", "allowed_collision_matrix"), "entry_names");
+      // The matrix has names.size() squared values, however short the text (aliases).
+      if (names.size() > limits_.max_acm_entries)
+        y_.fail(names, scene_detail::overLimit("allowed_collision_matrix: " +
+                                                   std::to_string(names.size()) + " entry_names",
+                                               limits_.max_acm_entries, "max_acm_entries"));
       const YAML::Node values =
           y_.sequence(y_.require(acm, "entry_values", "allowed_collision_matrix"), "entry_values");
       const std::size_t n = names.size();
@@ -140,6 +219,8 @@ class SceneYamlReader {
       for (std::size_t i = 0; i < n; ++i) {
         // Rows are either plain lists of booleans or {enabled: [...]} (moveit_msgs).
         // (yaml-cpp's Node::operator= writes through to the tree, so no reassignment here.)
+        y_.checkKeys(values[i], "allowed_collision_matrix row '" + name[i] + "'",
+                     "moveit_msgs/AllowedCollisionEntry", {"enabled"});
         const YAML::Node row =
             values[i].IsMap() ? y_.require(values[i], "enabled", "allowed_collision_matrix row")
                               : YAML::Node(values[i]);
@@ -155,6 +236,11 @@ class SceneYamlReader {
     }
     if (YamlReader::has(acm, "default_entry_names")) {
       const YAML::Node names = y_.sequence(acm["default_entry_names"], "default_entry_names");
+      if (names.size() > limits_.max_acm_entries)
+        y_.fail(names, scene_detail::overLimit(
+                           "allowed_collision_matrix: " + std::to_string(names.size()) +
+                               " default_entry_names",
+                           limits_.max_acm_entries, "max_acm_entries"));
       const YAML::Node values =
           y_.sequence(y_.require(acm, "default_entry_values", "allowed_collision_matrix"),
                       "default_entry_values");
@@ -183,6 +269,7 @@ class SceneYamlReader {
     const std::string id = y_.string(y_.require(obj, "id", fallback), fallback + " id");
     const std::string elem = "object '" + id + "'";
     if (id.empty()) y_.fail(obj, fallback + ": empty id");
+    y_.checkKeys(obj, elem, "moveit_msgs/CollisionObject", kCollisionObjectKeys);
 
     if (YamlReader::has(obj, "operation")) {
       const YAML::Node op = obj["operation"];
@@ -192,6 +279,8 @@ class SceneYamlReader {
                         "' not supported (only ADD; a scene file lists whole objects)");
     }
     std::string frame;
+    if (YamlReader::has(obj, "header"))
+      y_.checkKeys(obj["header"], elem + " header", "std_msgs/Header", kHeaderKeys);
     if (YamlReader::has(obj, "header") && YamlReader::has(obj["header"], "frame_id"))
       frame = y_.string(obj["header"]["frame_id"], elem + " header.frame_id");
     if (!frame.empty() && frame[0] == '/') frame = frame.substr(1);
@@ -205,6 +294,20 @@ class SceneYamlReader {
       std::string description;
     };
     std::vector<Part> parts;
+
+    // Shapes of this object (aliases can repeat a long list): bounded before any is read.
+    std::size_t shapes = 0;
+    for (const char* list : {"primitives", "meshes"})
+      if (YamlReader::has(obj, list) && obj[list].IsSequence()) shapes += obj[list].size();
+    if (shapes > limits_.max_shapes_per_object)
+      y_.fail(obj, scene_detail::overLimit(
+                       elem + ": " + std::to_string(shapes) + " primitives and meshes",
+                       limits_.max_shapes_per_object, "max_shapes_per_object"));
+    if (shapes > limits_.max_obstacles - std::min(scene.obstacles.size(), limits_.max_obstacles))
+      y_.fail(obj,
+              scene_detail::overLimit(elem + ": " + std::to_string(shapes) + " shapes after " +
+                                          std::to_string(scene.obstacles.size()) + " obstacles",
+                                      limits_.max_obstacles, "max_obstacles"));
 
     if (YamlReader::has(obj, "primitives")) {
       const YAML::Node prims = y_.sequence(obj["primitives"], elem + " primitives");
@@ -265,6 +368,7 @@ class SceneYamlReader {
 
   AnyShape primitive(const YAML::Node& p, const std::string& pe) const {
     if (!p.IsMap()) y_.fail(p, pe + ": expected a mapping {type, dimensions}");
+    y_.checkKeys(p, pe, "shape_msgs/SolidPrimitive", {"type", "dimensions", "polygon"});
     const YAML::Node t = y_.require(p, "type", pe);
     const std::string ts = lower(y_.string(t, pe + " type"));
     int type = 0;
@@ -300,8 +404,10 @@ class SceneYamlReader {
     }
   }
 
-  AnyShape meshShape(const YAML::Node& m, const std::string& me) const {
+  AnyShape meshShape(const YAML::Node& m, const std::string& me) {
     if (!m.IsMap()) y_.fail(m, me + ": expected a mapping");
+    y_.checkKeys(m, me, "shape_msgs/Mesh (with our resource, dimensions and scale)",
+                 {"vertices", "triangles", "resource", "dimensions", "scale"});
     if (YamlReader::has(m, "resource")) {
       const std::string uri = y_.string(m["resource"], me + " resource");
       Eigen::Vector3d scale = Eigen::Vector3d::Ones();
@@ -315,16 +421,22 @@ class SceneYamlReader {
       }
       const std::string where = y_.at(m) + ": " + me;
       const std::string file = scene_detail::resolveMeshUri(uri, base_dir_, options_, where);
-      return scene_detail::meshFileHull(file, scale, where);
+      return scene_detail::meshFileHull(file, scale, where, mesh_budget_);
     }
     const YAML::Node verts = y_.sequence(y_.require(m, "vertices", me), me + " vertices");
+    mesh_budget_.take(verts.size(), y_.at(verts) + ": " + me);
     std::vector<Eigen::Vector3d> pts;
     pts.reserve(verts.size());
     for (const auto& v : verts) pts.push_back(y_.vector3(v, me + " vertex"));
     if (pts.empty()) y_.fail(verts, me + ": mesh has no vertices");
     if (YamlReader::has(m, "triangles")) {
       const YAML::Node tris = y_.sequence(m["triangles"], me + " triangles");
+      if (tris.size() > limits_.max_mesh_triangles)
+        y_.fail(tris,
+                scene_detail::overLimit(me + ": " + std::to_string(tris.size()) + " triangles",
+                                        limits_.max_mesh_triangles, "max_mesh_triangles"));
       for (const auto& t : tris) {
+        y_.checkKeys(t, me + " triangle", "shape_msgs/MeshTriangle", {"vertex_indices"});
         const YAML::Node idx =
             t.IsMap() ? y_.require(t, "vertex_indices", me + " triangle") : YAML::Node(t);
         y_.sequence(idx, me + " triangle");
@@ -342,7 +454,9 @@ class SceneYamlReader {
 
   YamlReader y_;
   const SceneLoadOptions& options_;
+  const SceneInputLimits& limits_;
   std::string base_dir_;
+  scene_detail::MeshBudget mesh_budget_;
 };
 
 }  // namespace

@@ -16,7 +16,7 @@ Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (ext == ".yaml" || ext == ".yml") return loadPlanningSceneYaml(path, options);
-  if (ext == ".scene") return loadSceneText(path);
+  if (ext == ".scene") return loadSceneText(path, options);
   if (ext == ".urdf" || ext == ".xml") return loadUrdfWorld(path, options);
   throw SceneError(path + ": unknown scene format '" + ext +
                    "' (expected .yaml, .yml, .scene or .urdf)");

@@ -1,8 +1,10 @@
 // Reader of MoveIt's `.scene` text format, old and new versions.
 #include "dss/scene/scene_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -30,7 +32,8 @@ std::vector<std::string> tokens(const std::string& s) {
 
 class SceneTextReader {
  public:
-  SceneTextReader(const std::string& text, std::string source) : source_(std::move(source)) {
+  SceneTextReader(const std::string& text, std::string source, const SceneInputLimits& limits)
+      : source_(std::move(source)), limits_(limits), mesh_budget_(limits) {
     std::istringstream in(text);
     std::string line;
     int number = 0;
@@ -59,7 +62,7 @@ class SceneTextReader {
         ended = true;
         break;
       }
-      if (l.text[0] != '*') fail(l, "expected '* <object id>' or '.', got '" + l.text + "'");
+      if (l.text[0] != '*') fail(l, "expected '* <object id>' or '.', got '" + clip(l.text) + "'");
       readObject(trim(l.text.substr(1)), l, scene);
     }
     if (!ended) scene.warnings.push_back(source_ + ": no final '.' line");
@@ -91,7 +94,7 @@ class SceneTextReader {
     char* end = nullptr;
     const double v = std::strtod(tok.c_str(), &end);
     if (end == tok.c_str() || *end != '\0')
-      fail(l, what + ": expected a number, got '" + tok + "'");
+      fail(l, what + ": expected a number, got '" + clip(tok) + "'");
     return v;
   }
 
@@ -102,7 +105,7 @@ class SceneTextReader {
     if (where) *where = &l;
     const auto t = tokens(l.text);
     if (t.size() != n)
-      fail(l, what + ": expected " + std::to_string(n) + " numbers, got '" + l.text + "'");
+      fail(l, what + ": expected " + std::to_string(n) + " numbers, got '" + clip(l.text) + "'");
     std::vector<double> v;
     for (const auto& s : t) {
       v.push_back(parseNumber(s, l, what));
@@ -111,13 +114,31 @@ class SceneTextReader {
     return v;
   }
 
-  std::size_t count(const Line& l, const std::string& what) const {
+  /// A count of decimal digits (no sign), at most `limit` (`field` names the limit).
+  std::size_t count(const Line& l, const std::string& what, std::size_t limit,
+                    const char* field) const {
     const auto t = tokens(l.text);
-    if (t.size() != 1) fail(l, what + ": expected a count, got '" + l.text + "'");
-    char* end = nullptr;
-    const long v = std::strtol(t[0].c_str(), &end, 10);
-    if (*end != '\0' || v < 0) fail(l, what + ": expected a count, got '" + l.text + "'");
-    return static_cast<std::size_t>(v);
+    if (t.size() != 1) fail(l, what + ": expected a count, got '" + clip(l.text) + "'");
+    return countToken(t[0], l, what, limit, field);
+  }
+
+  std::size_t countToken(const std::string& tok, const Line& l, const std::string& what,
+                         std::size_t limit, const char* field) const {
+    if (tok.empty() || tok.find_first_not_of("0123456789") != std::string::npos)
+      fail(l, what + ": expected a count, got '" + clip(tok) + "'");
+    // Digit by digit, stopping once over the limit: no overflow, whatever the length.
+    std::size_t v = 0;
+    for (char c : tok) {
+      const std::size_t d = static_cast<std::size_t>(c - '0');
+      if (d > limit || v > (limit - d) / 10)
+        fail(l, scene_detail::overLimit(what + " " + clip(tok), limit, field));
+      v = v * 10 + d;
+    }
+    return v;
+  }
+
+  static std::string clip(const std::string& s) {
+    return s.size() <= 64 ? s : s.substr(0, 64) + "...";
   }
 
   Eigen::Isometry3d pose(const std::string& what) {
@@ -143,11 +164,18 @@ class SceneTextReader {
       new_format = true;
       --next_;
       X_WObj = pose(elem + " pose");
-      n_shapes = count(nextLine(elem + " shape count"), elem + " shape count");
+      n_shapes = count(nextLine(elem + " shape count"), elem + " shape count",
+                       limits_.max_shapes_per_object, "max_shapes_per_object");
     } else {
-      n_shapes = count(probe, elem + " shape count");
+      n_shapes = count(probe, elem + " shape count", limits_.max_shapes_per_object,
+                       "max_shapes_per_object");
     }
     if (n_shapes == 0) fail(probe, elem + ": no shapes (an empty object cannot be checked)");
+    if (n_shapes > limits_.max_obstacles - std::min(scene.obstacles.size(), limits_.max_obstacles))
+      fail(header,
+           scene_detail::overLimit(elem + ": " + std::to_string(n_shapes) + " shapes after " +
+                                       std::to_string(scene.obstacles.size()) + " obstacles",
+                                   limits_.max_obstacles, "max_obstacles"));
 
     std::vector<Obstacle> parts;
     for (std::size_t k = 0; k < n_shapes; ++k) {
@@ -177,7 +205,7 @@ class SceneTextReader {
       } else if (type == "plane") {
         fail(tl, se + ": planes are unbounded and not supported as obstacles");
       } else {
-        fail(tl, se + ": unknown shape type '" + type + "'");
+        fail(tl, se + ": unknown shape type '" + clip(type) + "'");
       }
       const Eigen::Isometry3d X_ObjS = pose(se);
       numbers(4, se + " colour (r g b a)");
@@ -190,7 +218,9 @@ class SceneTextReader {
       parts.push_back(std::move(o));
     }
     if (new_format) {
-      const std::size_t n_sub = count(nextLine(elem + " subframe count"), elem + " subframe count");
+      // Each subframe is read line by line, so the file's length bounds the work.
+      const std::size_t n_sub = count(nextLine(elem + " subframe count"), elem + " subframe count",
+                                      std::numeric_limits<std::size_t>::max(), "subframe count");
       for (std::size_t k = 0; k < n_sub; ++k) {
         nextLine(elem + " subframe name");
         pose(elem + " subframe");
@@ -204,12 +234,17 @@ class SceneTextReader {
 
   // "v t" then v vertices and t triangles; MoveIt reads them as a token stream, so line
   // breaks inside the block are free. Triangles are checked but only the vertices matter.
+  // Both counts are bounded before any arithmetic on them (3 v + 3 t cannot wrap around).
   AnyShape readMesh(const std::string& se, const Line& tl) {
     const Line& cl = nextLine(se + " mesh counts");
     const auto c = tokens(cl.text);
     if (c.size() != 2) fail(cl, se + ": expected 'vertex_count triangle_count'");
-    const std::size_t nv = count({c[0], cl.number}, se + " vertex count");
-    const std::size_t nt = count({c[1], cl.number}, se + " triangle count");
+    const std::size_t nv =
+        countToken(c[0], cl, se + " vertex count", limits_.max_mesh_vertices, "max_mesh_vertices");
+    const std::size_t nt = countToken(c[1], cl, se + " triangle count", limits_.max_mesh_triangles,
+                                      "max_mesh_triangles");
+    if (nv == 0) fail(cl, se + ": mesh has no vertices");
+    mesh_budget_.take(nv, at(cl) + ": " + se);
     std::vector<double> vals;
     const std::size_t want = 3 * nv + 3 * nt;
     const Line* last = &cl;
@@ -231,18 +266,21 @@ class SceneTextReader {
   }
 
   std::string source_;
+  const SceneInputLimits& limits_;
+  scene_detail::MeshBudget mesh_budget_;
   std::vector<Line> lines_;
   std::size_t next_ = 0;
 };
 
 }  // namespace
 
-Scene parseSceneText(const std::string& text, const std::string& source) {
-  return SceneTextReader(text, source).read();
+Scene parseSceneText(const std::string& text, const std::string& source,
+                     const SceneLoadOptions& options) {
+  return SceneTextReader(text, source, options.limits).read();
 }
 
-Scene loadSceneText(const std::string& path) {
-  return parseSceneText(scene_detail::readTextFile(path), path);
+Scene loadSceneText(const std::string& path, const SceneLoadOptions& options) {
+  return parseSceneText(scene_detail::readTextFile(path), path, options);
 }
 
 }  // namespace dss

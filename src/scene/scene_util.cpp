@@ -1,12 +1,14 @@
 // Checked inputs and mesh URIs for the scene readers.
 #include "scene_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "../common/nesting_scan.h"
 #include "dss/mesh/mesh.h"
 #include "dss/mesh/mesh_paths.h"
 #include "dss/scene/scene_error.h"
@@ -35,6 +37,17 @@ void checkSize(double v, const std::string& what, const std::string& where) {
     s << where << ": negative " << what << " (" << v << ")";
     throw SceneError(s.str());
   }
+}
+
+void checkMeshScale(const Eigen::Vector3d& scale, const std::string& where) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(scale[i]) || scale[i] == 0) {
+      std::ostringstream s;
+      s << where << ": mesh scale component "
+        << "xyz"[i] << " is " << scale[i] << " (scale \"" << scale.x() << " " << scale.y() << " "
+        << scale.z() << "\"): it must be finite and non-zero, or the mesh collapses";
+      throw SceneError(s.str());
+    }
 }
 
 std::string parentDir(const std::string& path) {
@@ -69,16 +82,56 @@ std::string resolveMeshUri(const std::string& uri, const std::string& base_dir,
   throw SceneError(msg + ")");
 }
 
+std::string overLimit(const std::string& what, std::size_t limit, const std::string& field,
+                      const std::string& options) {
+  return what + " exceeds the limit of " + std::to_string(limit) + " (SceneInputLimits::" + field +
+         "; raise it with " + options + "::limits." + field + ")";
+}
+
+void MeshBudget::take(std::size_t count, const std::string& where, bool more) {
+  const std::string size = (more ? "more than " : "") + std::to_string(count) + " vertices";
+  if (count > limits_.max_mesh_vertices || (more && count == limits_.max_mesh_vertices))
+    throw SceneError(
+        where + ": " +
+        overLimit("a mesh of " + size, limits_.max_mesh_vertices, "max_mesh_vertices"));
+  const std::size_t left = remaining();
+  if (count > left || (more && count == left))
+    throw SceneError(where + ": " +
+                     overLimit("the scene's mesh vertices (" + std::to_string(used_) +
+                                   " before this mesh of " + size + ")",
+                               limits_.max_scene_mesh_vertices, "max_scene_mesh_vertices"));
+  used_ += count;
+}
+
+std::size_t MeshBudget::remaining() const {
+  const std::size_t scene_left =
+      limits_.max_scene_mesh_vertices - std::min(used_, limits_.max_scene_mesh_vertices);
+  return std::min(limits_.max_mesh_vertices, scene_left);
+}
+
 ConvexHull meshFileHull(const std::string& file, const Eigen::Vector3d& scale,
-                        const std::string& where) {
+                        const std::string& where, MeshBudget& budget) {
+  const std::string what = where + " (mesh " + file + ")";
   mesh::TriangleMesh m;
+  const std::size_t cap = budget.remaining();
   try {
-    m = mesh::loadMesh(file, scale);
+    m = mesh::loadMesh(file, scale, cap);
+  } catch (const std::length_error&) {
+    budget.take(cap, what, /*more=*/true);  // throws, naming the limit
   } catch (const std::exception& e) {
     throw SceneError(where + ": " + e.what());
   }
   if (m.vertices.empty()) throw SceneError(where + ": mesh '" + file + "' has no vertices");
-  return pointsHull(m.vertices, where + " (mesh " + file + ")");
+  budget.take(m.vertices.size(), what);
+  return pointsHull(m.vertices, what);
+}
+
+void checkXmlDepth(const std::string& text, const std::string& file,
+                   const SceneInputLimits& limits) {
+  const input_scan::NestingExcess e = input_scan::xmlNesting(text, limits.max_xml_depth);
+  if (e.exceeded)
+    throw SceneError(file + ":" + std::to_string(e.line) + ":" + std::to_string(e.column) + ": " +
+                     overLimit("XML element nesting", limits.max_xml_depth, "max_xml_depth"));
 }
 
 ConvexHull pointsHull(const std::vector<Eigen::Vector3d>& points, const std::string& where) {

@@ -20,18 +20,50 @@ Eigen::Quaterniond checkedQuaternion(double x, double y, double z, double w,
 /// Throws unless v is finite and >= 0.
 void checkSize(double v, const std::string& what, const std::string& where);
 
+/// A URDF mesh scale: every component finite and non-zero (zero would flatten the mesh to a
+/// plane, a line or a point). A negative component mirrors the mesh and is accepted, as URDF
+/// allows it; the hull is that of the mirrored vertices.
+void checkMeshScale(const Eigen::Vector3d& scale, const std::string& where);
+
 /// The file a mesh URI points to: package:// through options.package_dirs,
 /// ROS_PACKAGE_PATH, AMENT_PREFIX_PATH (share/<pkg>) and then `base_dir` (some files use
 /// package://meshes/... for their own folder); file:// and relative paths against base_dir.
 std::string resolveMeshUri(const std::string& uri, const std::string& base_dir,
                            const SceneLoadOptions& options, const std::string& where);
 
-/// The convex hull of a mesh file, scaled.
+/// What to say when an input exceeds one of the SceneInputLimits: "<what> exceeds the limit
+/// of <limit> (SceneInputLimits::<field>; raise it with <options>::limits.<field>)".
+std::string overLimit(const std::string& what, std::size_t limit, const std::string& field,
+                      const std::string& options = "SceneLoadOptions");
+
+/// Counts the mesh vertices of one scene against the per-mesh and per-scene limits; throws
+/// SceneError prefixed by `where`.
+class MeshBudget {
+ public:
+  explicit MeshBudget(const SceneInputLimits& limits) : limits_(limits) {}
+  /// Before using a mesh of `count` vertices (`more`: of more than `count`); checks the
+  /// per-mesh and the per-scene limit.
+  void take(std::size_t count, const std::string& where, bool more = false);
+  /// What a mesh may still have: the smaller of the two limits.
+  std::size_t remaining() const;
+  const SceneInputLimits& limits() const { return limits_; }
+
+ private:
+  const SceneInputLimits& limits_;
+  std::size_t used_ = 0;
+};
+
+/// The convex hull of a mesh file, scaled; its vertices are taken from `budget`.
 ConvexHull meshFileHull(const std::string& file, const Eigen::Vector3d& scale,
-                        const std::string& where);
+                        const std::string& where, MeshBudget& budget);
 
 /// The convex hull of inline vertices.
 ConvexHull pointsHull(const std::vector<Eigen::Vector3d>& points, const std::string& where);
+
+/// Throws SceneError ("file:line:column: ...") when the element nesting of XML `text` exceeds
+/// limits.max_xml_depth, before a recursive parser sees it.
+void checkXmlDepth(const std::string& text, const std::string& file,
+                   const SceneInputLimits& limits);
 
 /// Folder of a path ("" -> ".").
 std::string parentDir(const std::string& path);

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "../common/urdf_tree_check.h"
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
 
@@ -46,9 +47,22 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& p, const std::string& where) {
   return X;
 }
 
-// Number of <collision> children of each <link>, by link name, from the XML itself.
-std::map<std::string, int> countCollisionElements(const std::string& text,
-                                                  const std::string& path) {
+// What the XML itself says: the number of <collision> children of each <link>, and the line
+// of each link and joint element (for messages).
+struct XmlFacts {
+  std::map<std::string, int> collisions;
+  std::map<std::string, int> link_lines, joint_lines;
+  std::vector<std::string> links;                 // document order
+  std::vector<urdf_tree::JointEdge> joint_edges;  // as the <parent>/<child> elements say
+};
+
+const char* linkOf(const TiXmlElement* joint, const char* tag) {
+  const TiXmlElement* e = joint->FirstChildElement(tag);
+  const char* link = e ? e->Attribute("link") : nullptr;
+  return link ? link : "";
+}
+
+XmlFacts scanXml(const std::string& text, const std::string& path) {
   TiXmlDocument doc;
   doc.Parse(text.c_str());
   if (doc.Error()) {
@@ -59,7 +73,7 @@ std::map<std::string, int> countCollisionElements(const std::string& text,
   }
   const TiXmlElement* robot = doc.FirstChildElement("robot");
   if (!robot) throw SceneError(path + ": no <robot> element");
-  std::map<std::string, int> counts;
+  XmlFacts facts;
   for (const TiXmlElement* link = robot->FirstChildElement("link"); link;
        link = link->NextSiblingElement("link")) {
     const char* name = link->Attribute("name");
@@ -67,19 +81,47 @@ std::map<std::string, int> countCollisionElements(const std::string& text,
     for (const TiXmlElement* c = link->FirstChildElement("collision"); c;
          c = c->NextSiblingElement("collision"))
       ++n;
-    counts[name ? name : ""] += n;
+    facts.collisions[name ? name : ""] += n;
+    if (name) {
+      facts.link_lines.emplace(name, link->Row());
+      facts.links.push_back(name);
+    }
   }
-  return counts;
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint;
+       joint = joint->NextSiblingElement("joint"))
+    if (const char* name = joint->Attribute("name")) {
+      facts.joint_lines.emplace(name, joint->Row());
+      facts.joint_edges.push_back({name, linkOf(joint, "parent"), linkOf(joint, "child")});
+    }
+  return facts;
+}
+
+// " (line N)" of a link or joint, or "" when the XML did not name it.
+auto lineOf(const std::map<std::string, int>& lines) {
+  return [&lines](const std::string& name) {
+    const auto it = lines.find(name);
+    return it == lines.end() ? std::string() : " (line " + std::to_string(it->second) + ")";
+  };
 }
 
 class UrdfWorldReader {
  public:
   UrdfWorldReader(const std::string& path, const SceneLoadOptions& options)
-      : path_(path), options_(options), base_dir_(scene_detail::parentDir(path)) {}
+      : path_(path),
+        options_(options),
+        base_dir_(scene_detail::parentDir(path)),
+        mesh_budget_(options.limits) {}
 
   Scene read() {
     const std::string text = scene_detail::readTextFile(path_);
-    const auto xml_counts = countCollisionElements(text, path_);
+    // tinyxml and urdfdom parse recursively: bound the nesting before either sees the text.
+    scene_detail::checkXmlDepth(text, path_, options_.limits);
+    const XmlFacts xml = scanXml(text, path_);
+    const auto& xml_counts = xml.collisions;
+    // The joints must form a tree before urdfdom links them (see urdf_tree_check.h).
+    const std::string tree_problem = urdf_tree::treeProblem(
+        xml.links, xml.joint_edges, lineOf(xml.link_lines), lineOf(xml.joint_lines));
+    if (!tree_problem.empty()) throw SceneError(path_ + ": " + tree_problem);
 
     CapturingHandler capture;
     urdf::ModelInterfaceSharedPtr model;
@@ -92,6 +134,16 @@ class UrdfWorldReader {
       for (const auto& m : capture.messages) msg += "; " + m;
       throw SceneError(msg);
     }
+    const std::size_t collision_count = [&] {
+      std::size_t n = 0;
+      for (const auto& [name, link] : model->links_) n += link->collision_array.size();
+      return n;
+    }();
+    if (collision_count > options_.limits.max_obstacles)
+      throw SceneError(
+          path_ + ": " +
+          scene_detail::overLimit(std::to_string(collision_count) + " <collision> elements",
+                                  options_.limits.max_obstacles, "max_obstacles"));
     Scene scene;
     scene.source = path_;
     scene.name = model->getName();
@@ -122,52 +174,59 @@ class UrdfWorldReader {
       return v;
     };
 
+    // Link poses from the root, with an explicit stack (a chain of links may be long; the
+    // tree check above guarantees that every link is reached once).
     std::map<std::string, Eigen::Isometry3d> X_WL;
-    std::function<void(const urdf::Link&, const Eigen::Isometry3d&)> visit =
-        [&](const urdf::Link& link, const Eigen::Isometry3d& X) {
-          X_WL[link.name] = X;
-          for (const auto& j : link.child_joints) {
-            const std::string where = path_ + ": joint '" + j->name + "'";
-            Eigen::Isometry3d X_PJ = toIsometry(j->parent_to_joint_origin_transform, where);
-            Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-            switch (j->type) {
-              case urdf::Joint::FIXED:
-                break;
-              case urdf::Joint::REVOLUTE:
-              case urdf::Joint::CONTINUOUS:
-              case urdf::Joint::PRISMATIC: {
-                if (options_.urdf_require_fixed_joints)
-                  throw SceneError(where +
-                                   ": movable joint in a URDF world (only fixed joints "
-                                   "are accepted with urdf_require_fixed_joints)");
-                const double q = value(*j, 0);
-                Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
-                if (!axis.allFinite() || axis.norm() < 1e-12)
-                  throw SceneError(where + ": zero or non-finite axis");
-                axis.normalize();
-                if (j->type == urdf::Joint::PRISMATIC)
-                  motion.translation() = q * axis;
-                else
-                  motion.linear() = Eigen::AngleAxisd(q, axis).toRotationMatrix();
-                std::ostringstream s;
-                s << where << ": movable joint held at " << q << " in the world";
-                scene.warnings.push_back(s.str());
-                break;
-              }
-              default:
-                throw SceneError(where +
-                                 ": floating and planar joints are not supported in a "
-                                 "URDF world");
-            }
-            auto child = model->getLink(j->child_link_name);
-            if (!child)
-              throw SceneError(where + ": missing child link '" + j->child_link_name + "'");
-            visit(*child, X * X_PJ * motion);
-          }
-        };
+    std::vector<std::pair<const urdf::Link*, Eigen::Isometry3d>> stack;
+    auto visit = [&](const urdf::Link& link, const Eigen::Isometry3d& X) {
+      stack.emplace_back(&link, X);
+    };
     const auto root = model->getRoot();
     if (!root) throw SceneError(path_ + ": no root link");
     visit(*root, Eigen::Isometry3d::Identity());
+    while (!stack.empty()) {
+      const auto [link_ptr, X] = stack.back();
+      stack.pop_back();
+      const urdf::Link& link = *link_ptr;
+      X_WL[link.name] = X;
+      for (const auto& j : link.child_joints) {
+        const std::string where = path_ + ": joint '" + j->name + "'";
+        Eigen::Isometry3d X_PJ = toIsometry(j->parent_to_joint_origin_transform, where);
+        Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+        switch (j->type) {
+          case urdf::Joint::FIXED:
+            break;
+          case urdf::Joint::REVOLUTE:
+          case urdf::Joint::CONTINUOUS:
+          case urdf::Joint::PRISMATIC: {
+            if (options_.urdf_require_fixed_joints)
+              throw SceneError(where +
+                               ": movable joint in a URDF world (only fixed joints "
+                               "are accepted with urdf_require_fixed_joints)");
+            const double q = value(*j, 0);
+            Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
+            if (!axis.allFinite() || axis.norm() < 1e-12)
+              throw SceneError(where + ": zero or non-finite axis");
+            axis.normalize();
+            if (j->type == urdf::Joint::PRISMATIC)
+              motion.translation() = q * axis;
+            else
+              motion.linear() = Eigen::AngleAxisd(q, axis).toRotationMatrix();
+            std::ostringstream s;
+            s << where << ": movable joint held at " << q << " in the world";
+            scene.warnings.push_back(s.str());
+            break;
+          }
+          default:
+            throw SceneError(where +
+                             ": floating and planar joints are not supported in a "
+                             "URDF world");
+        }
+        auto child = model->getLink(j->child_link_name);
+        if (!child) throw SceneError(where + ": missing child link '" + j->child_link_name + "'");
+        visit(*child, X * X_PJ * motion);
+      }
+    }
     for (const auto& name : unused)
       throw SceneError(path_ + ": joint value given for '" + name + "', which the URDF lacks");
 
@@ -199,7 +258,7 @@ class UrdfWorldReader {
   }
 
  private:
-  AnyShape shape(const urdf::Geometry& g, const std::string& where) const {
+  AnyShape shape(const urdf::Geometry& g, const std::string& where) {
     switch (g.type) {
       case urdf::Geometry::SPHERE: {
         const auto& s = static_cast<const urdf::Sphere&>(g);
@@ -221,11 +280,10 @@ class UrdfWorldReader {
       case urdf::Geometry::MESH: {
         const auto& m = static_cast<const urdf::Mesh&>(g);
         const Eigen::Vector3d scale(m.scale.x, m.scale.y, m.scale.z);
-        if (!scale.allFinite() || (scale.array() <= 0).any())
-          throw SceneError(where + ": mesh scale must be positive");
+        scene_detail::checkMeshScale(scale, where);
         const std::string file =
             scene_detail::resolveMeshUri(m.filename, base_dir_, options_, where);
-        return scene_detail::meshFileHull(file, scale, where);
+        return scene_detail::meshFileHull(file, scale, where, mesh_budget_);
       }
     }
     throw SceneError(where + ": unsupported geometry");
@@ -234,6 +292,7 @@ class UrdfWorldReader {
   std::string path_;
   const SceneLoadOptions& options_;
   std::string base_dir_;
+  scene_detail::MeshBudget mesh_budget_;
 };
 
 }  // namespace

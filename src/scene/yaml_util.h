@@ -1,12 +1,24 @@
 // YAML access with messages that name the file, the line and the element (internal to the
 // scene readers). yaml-cpp counts lines from 0; messages count from 1.
+//
+// Keys: checkKeys() compares the keys of a mapping with the fields of the ROS message read
+// there (plus our documented extensions). A key the message lacks is what makes a ROS message
+// fail to deserialize (rostopic pub, ros2 topic pub, rosidl's set_message_fields), so it is an
+// error by default, or a warning naming the key and the line when the caller allows it. A key
+// given twice is always an error: YAML requires unique keys, and yaml-cpp would silently keep
+// only one of the values.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <initializer_list>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
@@ -14,9 +26,79 @@
 namespace dss {
 namespace scene_detail {
 
+/// At most `max` characters of `s` (then "..."), for quoting file content in messages.
+inline std::string clip(const std::string& s, std::size_t max = 64) {
+  return s.size() <= max ? s : s.substr(0, max) + "...";
+}
+
+/// The edit distance of two short strings, capped at 3 (for "did you mean" hints).
+inline int editDistance(const std::string& a, const std::string& b) {
+  if (a.size() > b.size() + 3 || b.size() > a.size() + 3) return 3;
+  std::vector<int> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    int diagonal = row[0];
+    row[0] = static_cast<int>(i);
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const int up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return std::min(row[b.size()], 3);
+}
+
 class YamlReader {
  public:
   explicit YamlReader(std::string file) : file_(std::move(file)) {}
+
+  /// Unknown keys become lines in `*warnings` instead of errors; `option` names the setting
+  /// that chose this (for the error message's hint).
+  void setUnknownKeyPolicy(bool as_warnings, std::vector<std::string>* warnings,
+                           std::string option) {
+    unknown_as_warnings_ = as_warnings;
+    warnings_ = warnings;
+    option_ = std::move(option);
+  }
+
+  /// Checks the keys of `map` (nothing to do for a non-mapping): each must be one of `known`,
+  /// the fields of `message` (e.g. "moveit_msgs/CollisionObject") and our extensions, and
+  /// appear once.
+  void checkKeys(const YAML::Node& map, const std::string& element, const char* message,
+                 std::initializer_list<const char*> known) const {
+    if (!map.IsMap()) return;
+    std::map<std::string, std::string> seen;  // key -> where
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      const YAML::Node key = it->first;
+      if (!key.IsScalar()) fail(key, element + ": expected a plain key");
+      const std::string k = key.Scalar();
+      const auto [first, inserted] = seen.emplace(k, at(key));
+      if (!inserted)
+        fail(key, element + ": duplicate key '" + clip(k) + "' (first at " + first->second +
+                      "; YAML keys must be unique)");
+      if (std::any_of(known.begin(), known.end(), [&](const char* f) { return k == f; })) continue;
+      // The closest field (case ignored) as a hint, when it is close for the key's length.
+      std::string fields, hint;
+      int best = 3;
+      for (const char* f : known) {
+        fields += (fields.empty() ? "" : ", ") + std::string(f);
+        std::string lk = k, lf = f;
+        for (auto* s : {&lk, &lf})
+          std::transform(s->begin(), s->end(), s->begin(),
+                         [](unsigned char c) { return std::tolower(c); });
+        const int d = editDistance(lk, lf);
+        if (d < best && (d == 0 || d < static_cast<int>(k.size()))) {
+          best = d;
+          hint = "; did you mean '" + std::string(f) + "'?";
+        }
+      }
+      const std::string what = at(key) + ": " + element + ": unknown key '" + clip(k) + "' (" +
+                               message + " has " + fields + hint + ")";
+      if (!unknown_as_warnings_ || !warnings_)
+        throw SceneError(what + "; " + option_ + " = true reads it as a warning");
+      warnings_->push_back(what + ": ignored");
+    }
+  }
 
   const std::string& file() const { return file_; }
 
@@ -98,10 +180,12 @@ class YamlReader {
       if (n.size() != 3) fail(n, element + ": expected 3 numbers, got " + std::to_string(n.size()));
       return {number(n[0], element), number(n[1], element), number(n[2], element)};
     }
-    if (n.IsMap())
+    if (n.IsMap()) {
+      checkKeys(n, element, "geometry_msgs/Point", {"x", "y", "z"});
       return {number(require(n, "x", element), element + ".x"),
               number(require(n, "y", element), element + ".y"),
               number(require(n, "z", element), element + ".z")};
+    }
     fail(n, element + ": expected [x, y, z] or {x, y, z}");
   }
 
@@ -113,6 +197,7 @@ class YamlReader {
         fail(n, element + ": expected 4 numbers [x, y, z, w], got " + std::to_string(n.size()));
       for (int i = 0; i < 4; ++i) q[i] = rawNumber(n[i], element);
     } else if (n.IsMap()) {
+      checkKeys(n, element, "geometry_msgs/Quaternion", {"x", "y", "z", "w"});
       const char* keys[] = {"x", "y", "z", "w"};
       for (int i = 0; i < 4; ++i) q[i] = rawNumber(require(n, keys[i], element), element);
     } else {
@@ -124,6 +209,7 @@ class YamlReader {
   /// {position, orientation} (both required).
   Eigen::Isometry3d pose(const YAML::Node& n, const std::string& element) const {
     if (!n.IsMap()) fail(n, element + ": expected a pose {position, orientation}");
+    checkKeys(n, element, "geometry_msgs/Pose", {"position", "orientation"});
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() =
         quaternion(require(n, "orientation", element), element + " orientation").toRotationMatrix();
@@ -134,6 +220,7 @@ class YamlReader {
   /// geometry_msgs/Transform: {translation, rotation}.
   Eigen::Isometry3d transform(const YAML::Node& n, const std::string& element) const {
     if (!n.IsMap()) fail(n, element + ": expected a transform {translation, rotation}");
+    checkKeys(n, element, "geometry_msgs/Transform", {"translation", "rotation"});
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() =
         quaternion(require(n, "rotation", element), element + " rotation").toRotationMatrix();
@@ -153,6 +240,9 @@ class YamlReader {
   }
 
   std::string file_;
+  bool unknown_as_warnings_ = false;
+  std::vector<std::string>* warnings_ = nullptr;
+  std::string option_ = "unknown_keys_are_warnings";
 };
 
 }  // namespace scene_detail

@@ -440,3 +440,115 @@ BOOST_AUTO_TEST_CASE(large_and_flat_convex_sets_agree_with_probes) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// Input a reader must not trust: nesting that would overflow recursive code (200 000 nested
+// arrays once crashed dss_pairs, the message dumping the value recursively), keys a shape does
+// not have, keys given twice (nlohmann keeps the last one silently), and huge values that a
+// message must not quote in full. Each is a `FILE:N:` error with exit code 2.
+BOOST_AUTO_TEST_SUITE(dss_pairs_strict_input)
+
+namespace {
+
+struct StrictCase {
+  const char* name;
+  std::string bad_line;
+  std::string message;  // the whole first stderr line after "FILE:3: "
+};
+
+void checkStrictCases(const std::vector<StrictCase>& cases) {
+  for (const StrictCase& c : cases) {
+    const fs::path file = writeFile(std::string(c.name) + ".jsonl",
+                                    dss_pairs_input::kGood + "\n" + dss_pairs_input::kGood + "\n" +
+                                        c.bad_line + "\n" + dss_pairs_input::kGood + "\n");
+    const Run r = runTool(quote(file.string()));
+    BOOST_CHECK_MESSAGE(r.exit_code == 2, c.name << ": exit " << r.exit_code);
+    BOOST_CHECK_EQUAL(r.firstErrLine(), file.string() + ":3: " + c.message);
+    BOOST_CHECK_MESSAGE(r.out.empty(), c.name << ": no answers before the error");
+  }
+}
+
+std::string nestedArrays(std::size_t n) { return std::string(n, '[') + std::string(n, ']'); }
+
+}  // namespace
+
+// The reproducer: 200 000 nested arrays, alone on a line and as a shape.
+BOOST_AUTO_TEST_CASE(deep_nesting_is_refused_before_parsing) {
+  const std::string prefix = R"({"id":"x","a":)";
+  checkStrictCases({
+      {"deep_line", nestedArrays(200000),
+       "column 65: arrays and objects nest deeper than the limit of 64 "
+       "(PairsInputLimits::max_depth in tools/pairs_input.h)"},
+      {"deep_shape", prefix + nestedArrays(200000) + R"(,"b":{"type":"sphere","radius":1}})",
+       "column " + std::to_string(prefix.size() + 64) +
+           ": arrays and objects nest deeper than the limit of 64 "
+           "(PairsInputLimits::max_depth in tools/pairs_input.h)"},
+      // Brackets inside strings do not nest.
+      {"brackets_in_string",
+       R"({"id":")" + std::string(100, '[') + R"(","a":{"type":"sphere","radius":1},"b":5})",
+       "b: expected a shape object, got 5"},
+  });
+  // At the limit the line is parsed (and refused for what it is, not for its depth).
+  checkStrictCases({{"depth_64", prefix + nestedArrays(63) + R"(,"b":{"type":"sphere"}})",
+                     "a: expected a shape object, got [[[[...]]]]"}});
+}
+
+BOOST_AUTO_TEST_CASE(unknown_fields_are_errors) {
+  checkStrictCases({
+      {"unknown_top",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1},"c":1})",
+       R"(pair: unknown field "c" (a pair has "id", "a", "b"))"},
+      {"radius_on_box",
+       R"({"id":"x","a":{"type":"box","size":[1,1,1],"radius":1},"b":{"type":"sphere","radius":1}})",
+       R"(a: unknown field "radius" (a box has "type", "size", "pose"))"},
+      {"misspelled_pose",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"Pose":{"position":[3,0,0],"orientation":[0,0,0,1]}}})",
+       R"(b: unknown field "Pose" (a sphere has "type", "radius", "pose"))"},
+      {"pose_field",
+       R"({"id":"x","a":{"type":"cone","radius":1,"length":1,"pose":{"position":[0,0,0],"orientation":[0,0,0,1],"rotation":[0,0,0,1]}},"b":{"type":"sphere","radius":1}})",
+       R"(a.pose: unknown field "rotation" (a pose has "position", "orientation"))"},
+      {"convex_field",
+       R"({"id":"x","a":{"type":"convex","vertices":[[0,0,0]],"faces":[]},"b":{"type":"sphere","radius":1}})",
+       R"(a: unknown field "faces" (a convex shape has "type", "vertices", "pose"))"},
+  });
+}
+
+BOOST_AUTO_TEST_CASE(duplicate_keys_are_errors) {
+  checkStrictCases({
+      {"duplicate_id",
+       R"({"id":"x","id":"y","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1}})",
+       R"(duplicate key "id" in an object (each key may appear once))"},
+      {"duplicate_radius",
+       R"({"id":"x","a":{"type":"sphere","radius":1,"radius":2},"b":{"type":"sphere","radius":1}})",
+       R"(duplicate key "radius" in an object (each key may appear once))"},
+      {"duplicate_position",
+       R"({"id":"x","a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1,"pose":{"position":[0,0,0],"orientation":[0,0,0,1],"position":[9,0,0]}}})",
+       R"(duplicate key "position" in an object (each key may appear once))"},
+  });
+  // The same key in different objects is fine.
+  const fs::path ok = writeFile("same_key_elsewhere.jsonl", dss_pairs_input::kGood + "\n");
+  BOOST_CHECK_EQUAL(runTool(quote(ok.string())).exit_code, 0);
+}
+
+BOOST_AUTO_TEST_CASE(messages_quote_values_briefly) {
+  std::string big = "[";
+  for (int i = 0; i < 100000; ++i) big += (i ? ",1" : "1");
+  big += "]";
+  checkStrictCases({
+      {"huge_id",
+       R"({"id":)" + big + R"(,"a":{"type":"sphere","radius":1},"b":{"type":"sphere","radius":1}})",
+       // The first 60 characters of the array: "[1" and 29 ",1", then "...".
+       "id: expected a string or a number, got [1" +
+           [] {
+             std::string s;
+             for (int i = 0; i < 29; ++i) s += ",1";
+             return s;
+           }() +
+           "..."},
+      {"long_type",
+       R"({"id":"x","a":{"type":")" + std::string(5000, 't') +
+           R"("},"b":{"type":"sphere","radius":1}})",
+       "a.type: unknown shape type \"" + std::string(59, 't') + "..."},
+  });
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -14,6 +14,7 @@
 #include "dss/checker/state_checker.h"
 #include "dss/core/result.h"
 #include "dss/robot/srdf.h"
+#include "dss/robot/urdf_loader.h"
 #include "dss/scene/scene.h"
 
 namespace dss {
@@ -21,10 +22,16 @@ namespace dss {
 struct LoadedRobot {
   std::shared_ptr<const RobotModel> model;
   std::optional<Srdf> srdf;
+
+  /// The stored warnings of the URDF and then the SRDF readers (to be shown to the user once
+  /// per robot; setupModel does not repeat them).
+  std::vector<std::string> warnings() const;
 };
 
-/// srdf_path may be empty. Throws std::runtime_error naming the file.
-LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path);
+/// srdf_path may be empty. Throws std::runtime_error naming the file. `options` go to the
+/// URDF reader; their `limits` also to the SRDF reader.
+LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path,
+                      const LoadOptions& options = {});
 
 /// The group's active joints: the SRDF group when named, else the SRDF's first group when there
 /// is one, else every active joint. `group` receives the chosen name ("" for all).
@@ -35,6 +42,7 @@ struct ModelSetup {
   std::string group;
   std::vector<int> group_active;
   std::vector<double> held;  ///< one value per active joint
+  /// The scene reader's stored warnings, then those of the setup and the collision model.
   std::vector<std::string> warnings;
 };
 

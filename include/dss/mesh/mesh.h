@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,10 +29,14 @@ struct TriangleMesh {
 
 /// Reads a mesh file (STL binary/ASCII, DAE, OBJ, anything assimp reads), applies the node
 /// transforms of the file (Collada units included, up-axis ignored) and then `scale` per axis.
-/// Throws std::runtime_error naming the path: missing file, unreadable file, no vertices,
-/// a non-finite vertex or a non-finite scale.
+/// A negative scale component mirrors the mesh (triangles are flipped to stay outward when
+/// the mirroring is odd). Throws std::runtime_error naming the path: missing file, unreadable
+/// file, no vertices, a non-finite vertex or a non-finite scale; std::length_error (also
+/// naming the path) when the file's meshes, counted once per node that instances them, have
+/// more than `max_vertices` vertices.
 TriangleMesh loadMesh(const std::string& path,
-                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
+                      std::size_t max_vertices = std::numeric_limits<std::size_t>::max());
 
 /// The convex hull of `points`, with vertex adjacency when the set is full-dimensional.
 /// Flat (coplanar), collinear, single-point and tiny sets return the distinct points without

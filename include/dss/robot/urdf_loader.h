@@ -8,6 +8,15 @@
 // of URDF radius and length along z); meshes become convex hulls. Floating and planar joints
 // are refused with a message naming the joint. Every error is a std::runtime_error whose
 // message names the file and the element (link, joint, collision index, line).
+// The joints must form a tree: a link that is the child of two joints (a closed chain or a
+// cycle) and links that cannot be reached from the root (a detached cycle), both of which
+// urdfdom accepts, are errors naming the links and joints. A mesh `scale` component of zero is
+// an error; a negative one mirrors the mesh (the hull is that of the mirrored vertices, as in
+// the URDF-world reader). Input budgets (XML nesting, vertices per mesh) are
+// LoadOptions::limits (dss/robot/input_limits.h). Elements and attributes that URDF does not
+// define (e.g. <gazebo>, <transmission>, vendor extensions) are ignored, as urdfdom and so
+// MoveIt ignore them; inside <collision><geometry>, an unknown tag is a dropped collision
+// (above), never skipped silently.
 // Not thread safe: urdfdom reports through the process-wide console_bridge handler, which is
 // swapped for the duration of a load to capture its messages.
 #pragma once
@@ -15,6 +24,7 @@
 #include <string>
 
 #include "dss/mesh/mesh_paths.h"
+#include "dss/robot/input_limits.h"
 #include "dss/robot/robot_model.h"
 
 namespace dss {
@@ -25,6 +35,8 @@ struct LoadOptions {
   bool allow_dropped_collisions = false;
   /// Load collision geometry at all (false: kinematics only).
   bool load_collisions = true;
+  /// Counts and depths beyond which a file is refused.
+  RobotInputLimits limits;
 };
 
 RobotModel loadUrdf(const std::string& path, const LoadOptions& options = {});

@@ -4,6 +4,16 @@
 // Cartesian goal constraints (position, orientation, visibility) are refused: the planners
 // here take joint goals only. Missing tolerances are 0, as in the message's defaults
 // (MotionBenchMaker gives none).
+//
+// Keys: every mapping read (the request, start_state and its joint states, each goal's
+// Constraints and JointConstraint) may hold only the fields of its moveit_msgs message. An
+// unknown key (e.g. `goal_constraint`, `Position`) is an error naming the key and the line, as
+// a ROS message would fail to deserialize with it; PlanRequestOptions::unknown_keys_are_warnings
+// turns it into a line in PlanRequest::warnings. A key given twice in one mapping is always an
+// error (yaml-cpp would keep one value silently). Fields of the message that a joint-space
+// problem does not use (workspace_parameters, path_constraints, planner_id, ...) are accepted
+// and not read. The start joints plus all goal joint constraints are bounded by
+// PlanRequestOptions::limits.max_request_joint_values, counted after YAML alias expansion.
 #pragma once
 
 #include <map>
@@ -11,7 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "dss/scene/input_limits.h"
+
 namespace dss {
+
+struct PlanRequestOptions {
+  /// Only max_request_joint_values applies to requests.
+  SceneInputLimits limits;
+  /// An unknown key becomes a line in PlanRequest::warnings instead of an error.
+  bool unknown_keys_are_warnings = false;
+};
 
 struct JointConstraint {
   std::string joint_name;
@@ -52,8 +71,12 @@ std::vector<std::string> checkRequestJoints(const PlanRequest& request,
                                             const std::set<std::string>& held);
 
 /// Throws SceneError ("file:line: ...") on malformed YAML, a missing group_name, mismatched
-/// name/position lengths, non-finite values or non-joint goal constraints.
+/// name/position lengths, non-finite values, non-joint goal constraints, an unknown or
+/// repeated key, or more joint values than the limit.
 PlanRequest loadPlanRequestYaml(const std::string& path);
+PlanRequest loadPlanRequestYaml(const std::string& path, const PlanRequestOptions& options);
 PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& source);
+PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& source,
+                                 const PlanRequestOptions& options);
 
 }  // namespace dss

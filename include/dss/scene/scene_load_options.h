@@ -1,9 +1,11 @@
-// Options shared by the scene readers: where `package://` mesh URIs live and which values
-// the movable joints of a URDF world take.
+// Options shared by the scene readers: where `package://` mesh URIs live, which values the
+// movable joints of a URDF world take, the input budgets and how strictly YAML keys are read.
 #pragma once
 
 #include <map>
 #include <string>
+
+#include "dss/scene/input_limits.h"
 
 namespace dss {
 
@@ -15,6 +17,12 @@ struct SceneLoadOptions {
   std::map<std::string, double> joint_values;
   /// URDF world: refuse a URDF with non-fixed joints instead of posing them.
   bool urdf_require_fixed_joints = false;
+  /// Counts and depths beyond which a file is refused (see input_limits.h).
+  SceneInputLimits limits;
+  /// PlanningScene YAML: a key that the message at that place does not have (e.g. `Pose` or
+  /// `primitve_poses`) is an error by default, as when deserializing the ROS message; true
+  /// makes it a line in Scene::warnings instead (the key is then ignored).
+  bool unknown_keys_are_warnings = false;
 };
 
 }  // namespace dss

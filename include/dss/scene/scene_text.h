@@ -14,15 +14,20 @@
 // As MoveIt does, the line after `* id` decides the version: with spaces it is the object
 // position (new format), without it is the shape count (old format). Shape poses are
 // relative to the object pose. Poses are in the world frame. Errors name the file and line.
+// Counts are digits only and bounded before use by SceneLoadOptions::limits (shapes per
+// object, obstacles, vertices and triangles per mesh, mesh vertices per scene); a count over
+// its limit is an error naming the line and the limit. Only `limits` of the options applies.
 #pragma once
 
 #include <string>
 
 #include "dss/scene/scene.h"
+#include "dss/scene/scene_load_options.h"
 
 namespace dss {
 
-Scene loadSceneText(const std::string& path);
-Scene parseSceneText(const std::string& text, const std::string& source);
+Scene loadSceneText(const std::string& path, const SceneLoadOptions& options = {});
+Scene parseSceneText(const std::string& text, const std::string& source,
+                     const SceneLoadOptions& options = {});
 
 }  // namespace dss

@@ -15,6 +15,13 @@
 // urdfdom's own messages are captured (console_bridge's global output handler is swapped for
 // the duration of the parse) and put in the exception or in Scene::warnings; do not load
 // URDFs from several threads at once.
+// The joints must form a tree: a link that is the child of two joints (a closed chain or a
+// cycle) and links that cannot be reached from the root (a detached cycle), which urdfdom
+// accepts, are errors naming the links and joints with their lines; the poses are computed
+// without recursion. A mesh scale component of zero (or not finite) is an error; a negative
+// one mirrors the mesh, as in the robot loader. Input budgets (XML nesting checked on the raw
+// text before parsing, obstacles, mesh vertices) are SceneLoadOptions::limits. Elements that
+// URDF does not define are ignored, as urdfdom ignores them.
 #pragma once
 
 #include <string>
