@@ -104,7 +104,8 @@ const char* kUsage =
     "  --shared DIR         shared robots and scenes (default: the build's DSS_SHARED_DIR)\n"
     "  --quick              seconds-long run for CI (1 scene per robot, few states, 1 plan)\n"
     "  Exit status: 0; 1 on bad options or input; 3 when hull+exact misses a collision of the\n"
-    "  mesh truth that FCL's own gap does not explain.\n";
+    "  mesh truth that FCL's own gap does not explain; 77 when the shared robots are absent\n"
+    "  (nothing measured).\n";
 
 struct Args {
   std::vector<std::string> robots = {"panda", "ur5", "iiwa"};
@@ -630,6 +631,9 @@ struct RobotRun {
   double extent = 0;
   std::vector<double> lo, hi;
 };
+
+// Exit code when the shared robots are absent and nothing was measured (CTest: skipped).
+constexpr int kExitNothingMeasured = 77;
 
 bool fileExists(const std::string& p) { return fs::exists(p); }
 
@@ -1315,7 +1319,7 @@ int runTradeoff(int argc, char** argv) {
     std::cout << "tradeoff: skipping every robot: " << a.shared
               << "/robots not found (set --shared)\n";
     if (!a.csv.empty()) writeCsv(a.csv, {}, a);
-    return 0;
+    return kExitNothingMeasured;
   }
   std::vector<Setting> settings;
   for (const auto& s : allSettings())

@@ -114,7 +114,10 @@ fi
 to_cmd="dss_bench tradeoff ${to_args[*]} --csv $(rel "$to_csv")"
 if [[ $quick == 1 || $tradeoff == 1 ]]; then
   echo "== $to_cmd"
-  nice -n 5 "$bench" tradeoff "${to_args[@]}" --csv "$(rel "$to_csv")" > "$data/tradeoff.txt"
+  # Exit 77: the shared robots are absent, nothing measured (the header-only CSV draws nothing).
+  rc=0
+  nice -n 5 "$bench" tradeoff "${to_args[@]}" --csv "$(rel "$to_csv")" > "$data/tradeoff.txt" || rc=$?
+  if [[ $rc != 0 && $rc != 77 ]]; then exit $rc; fi
   echo "$to_cmd" >> "$data/commands.txt"
 fi
 if [[ -s "$to_csv" ]]; then

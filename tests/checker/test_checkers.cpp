@@ -22,6 +22,7 @@
 #include "dss/core/ref.h"
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -80,10 +81,8 @@ BOOST_AUTO_TEST_CASE(two_threads_give_the_same_answers) {
 
 namespace {
 void compareOnMbm(const std::string& robot_dir, const std::string& robot, const std::string& mbm) {
-  if (!fs::exists(robot_dir + "/" + robot + ".urdf") || !fs::exists(mbm)) {
-    BOOST_TEST_MESSAGE(mbm << " or " << robot_dir << " absent: skipped");
-    return;
-  }
+  BOOST_REQUIRE_MESSAGE(fs::exists(robot_dir + "/" + robot + ".urdf") && fs::exists(mbm),
+                        mbm << " or " << robot_dir << " not found");
   const auto r =
       dss::loadRobot(robot_dir + "/" + robot + ".urdf", robot_dir + "/" + robot + ".srdf");
   double max_band = 0.0;
@@ -172,11 +171,11 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
 }
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states) {
+BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states, DSS_NEEDS_SHARED) {
   compareOnMbm(kPanda, "panda", kMbm);
 }
 
-BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_ur5_random_states) {
+BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_ur5_random_states, DSS_NEEDS_SHARED) {
   compareOnMbm(std::string(DSS_SHARED_DIR) + "/robots/ur5_robotiq85", "ur5",
                std::string(DSS_SHARED_DIR) + "/scenes/mbm_ur5");
 }

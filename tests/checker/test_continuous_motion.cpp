@@ -16,6 +16,7 @@
 #include "dss/checker/continuous_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/scene/scene_loader.h"
+#include "support/shared_data.h"
 
 namespace {
 
@@ -181,11 +182,10 @@ BOOST_AUTO_TEST_SUITE(continuous_motion)
 BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_moving_link) {
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
   checkPaddings(loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", ""), 5);
-  const std::string panda = std::string(DSS_SHARED_DIR) + "/robots/panda";
-  if (!std::filesystem::exists(panda + "/panda.urdf")) {
-    BOOST_TEST_MESSAGE("skipping the Panda: " << panda << " absent");
-    return;
-  }
+}
+
+BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_moving_panda_link, DSS_NEEDS_SHARED) {
+  const std::string panda = dss_test::sharedPath("robots/panda");
   checkPaddings(loadArm(panda + "/panda.urdf", panda + "/panda.srdf", ""), 6);
 }
 
@@ -195,13 +195,11 @@ BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling) {
       loadArm(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf", dir + "/scenes/shelf.yaml");
   checkAgainstDenseSampling(arm, 7, 0.15, 150);
   checkAgainstDenseSampling(arm, 8, 1.0, 60);
-  const std::string panda = std::string(DSS_SHARED_DIR) + "/robots/panda";
-  const std::string scene =
-      std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda/bookshelf_small/scene0001.yaml";
-  if (!std::filesystem::exists(scene)) {
-    BOOST_TEST_MESSAGE("skipping the Panda: " << scene << " absent");
-    return;
-  }
+}
+
+BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling_on_the_panda, DSS_NEEDS_SHARED) {
+  const std::string panda = dss_test::sharedPath("robots/panda");
+  const std::string scene = dss_test::sharedPath("scenes/mbm_panda/bookshelf_small/scene0001.yaml");
   const Arm p = loadArm(panda + "/panda.urdf", panda + "/panda.srdf", scene);
   checkAgainstDenseSampling(p, 9, 0.15, 150);
 }

@@ -12,6 +12,7 @@
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -104,11 +105,8 @@ BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_our_arm) {
   compareAnswers(*p.model, 3000, 21);
 }
 
-BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_mbm_panda) {
-  if (!fs::exists(kPanda + "/panda.urdf") || !fs::exists(kMbm)) {
-    BOOST_TEST_MESSAGE("shared Panda or MotionBenchMaker scenes absent: skipped");
-    return;
-  }
+BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_mbm_panda, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf") && fs::exists(kMbm));
   const auto r = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
   std::size_t decided = 0;
   bool first = true;

@@ -14,6 +14,7 @@
 #include "dss/checker/sweep.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -109,12 +110,9 @@ void checkModel(const dss::CollisionModel& m, std::uint64_t seed) {
 
 BOOST_AUTO_TEST_SUITE(pair_blocks)
 
-BOOST_AUTO_TEST_CASE(blocks_skip_only_pairs_their_own_filters_skip_panda) {
-  if (!fs::exists(kPanda + "/panda.urdf") ||
-      !fs::exists(kMbm + "/bookshelf_small/request0001.yaml")) {
-    BOOST_TEST_MESSAGE("skipped: shared Panda or MotionBenchMaker scenes not found");
-    return;
-  }
+BOOST_AUTO_TEST_CASE(blocks_skip_only_pairs_their_own_filters_skip_panda, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf") &&
+                fs::exists(kMbm + "/bookshelf_small/request0001.yaml"));
   const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
   const dss::Scene scene = dss::loadScene(kMbm + "/bookshelf_small/scene0001.yaml");
   const auto req = dss::loadPlanRequestYaml(kMbm + "/bookshelf_small/request0001.yaml");

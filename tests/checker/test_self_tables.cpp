@@ -17,6 +17,7 @@
 #include "dss/core/any_shape_query.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -213,11 +214,8 @@ BOOST_AUTO_TEST_CASE(own_arm_certified_cells_are_free) {
   BOOST_TEST_MESSAGE("dss_arm7: " << checked << " element pairs in certified cells checked");
 }
 
-BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer) {
-  if (!fs::exists(kPanda + "/panda.urdf")) {
-    BOOST_TEST_MESSAGE("skipped: " << kPanda << " not found");
-    return;
-  }
+BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf"));
   const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
   const dss::Scene scene = dss::loadScene(kMbm + "/table_pick/scene0001.yaml");
   const dss::ModelSetup p = dss::setupModel(robot, scene, "", {});
@@ -266,11 +264,9 @@ BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer)
 // With the MotionBenchMaker group (the arm; the fingers held), pairs that also depend on a
 // finger joint get tables at the held finger value: every decided cell is right there, and a
 // checker with tables answers as one without.
-BOOST_AUTO_TEST_CASE(panda_arm_group_tables_with_held_fingers) {
-  if (!fs::exists(kPanda + "/panda.urdf") || !fs::exists(kMbm + "/table_pick/request0001.yaml")) {
-    BOOST_TEST_MESSAGE("skipped: shared Panda or MotionBenchMaker scenes not found");
-    return;
-  }
+BOOST_AUTO_TEST_CASE(panda_arm_group_tables_with_held_fingers, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf") &&
+                fs::exists(kMbm + "/table_pick/request0001.yaml"));
   const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
   const dss::Scene scene = dss::loadScene(kMbm + "/table_pick/scene0001.yaml");
   const auto req = dss::loadPlanRequestYaml(kMbm + "/table_pick/request0001.yaml");

@@ -14,6 +14,7 @@
 #include "dss/robot/input_limits.h"
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -79,18 +80,15 @@ std::string firstRefusal(const dss::RobotInputLimits& limits) {
 
 BOOST_AUTO_TEST_SUITE(robot_input_limits)
 
-BOOST_AUTO_TEST_CASE(every_real_file_fits_the_largest_seen_values) {
-  if (!fs::is_directory(kShared)) {
-    std::cout << "skipped: " << kShared << " not present\n";
-    return;
-  }
+BOOST_AUTO_TEST_CASE(every_real_file_fits_the_largest_seen_values, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::is_directory(kShared));
   BOOST_TEST(files(".urdf").size() == 20u + 2u);
   BOOST_TEST(files(".srdf").size() == 5u + 2u);
   BOOST_TEST(firstRefusal(largestSeen()) == "");
 }
 
-BOOST_AUTO_TEST_CASE(each_largest_seen_value_is_needed) {
-  if (!fs::is_directory(kShared)) return;
+BOOST_AUTO_TEST_CASE(each_largest_seen_value_is_needed, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::is_directory(kShared));
   using Field = std::size_t dss::RobotInputLimits::*;
   const std::vector<std::pair<Field, std::string>> fields = {
       {&dss::RobotInputLimits::max_xml_depth, "max_xml_depth"},

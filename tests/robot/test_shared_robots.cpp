@@ -9,6 +9,7 @@
 #include "dss/robot/kinematics.h"
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -16,11 +17,7 @@ namespace {
 
 const fs::path kRobots = fs::path(DSS_SHARED_DIR) / "robots";
 
-bool haveShared() {
-  if (fs::is_directory(kRobots)) return true;
-  std::cout << "skipped: " << kRobots << " not present\n";
-  return false;
-}
+bool haveShared() { return fs::is_directory(kRobots); }
 
 struct Expected {
   std::string file;
@@ -77,8 +74,8 @@ dss::LoadOptions origOptions() {
 
 BOOST_AUTO_TEST_SUITE(shared_robots)
 
-BOOST_AUTO_TEST_CASE(every_urdf_loads_with_manifest_counts) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(every_urdf_loads_with_manifest_counts, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   for (const auto& e : kExpected) {
     BOOST_TEST_CONTEXT(e.file) {
       const auto m = dss::loadUrdf((kRobots / (e.file + ".urdf")).string());
@@ -87,8 +84,8 @@ BOOST_AUTO_TEST_CASE(every_urdf_loads_with_manifest_counts) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(every_orig_urdf_loads_with_package_roots) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(every_orig_urdf_loads_with_package_roots, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   for (const auto& e : kExpected) {
     BOOST_TEST_CONTEXT(e.file << ".orig") {
       const auto m = dss::loadUrdf((kRobots / (e.file + ".orig.urdf")).string(), origOptions());
@@ -117,8 +114,8 @@ BOOST_AUTO_TEST_CASE(every_orig_urdf_loads_with_package_roots) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(srdfs_load_and_match_their_urdfs) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(srdfs_load_and_match_their_urdfs, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   struct S {
     std::string srdf;
     std::vector<std::string> urdfs;
@@ -162,8 +159,8 @@ BOOST_AUTO_TEST_CASE(srdfs_load_and_match_their_urdfs) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(panda_groups_and_states, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   const auto model = dss::loadUrdf((kRobots / "panda/panda.urdf").string());
   const auto srdf = dss::loadSrdf((kRobots / "panda/panda.srdf").string());
   const auto arm = dss::groupActiveJoints(model, srdf, "panda_arm");
@@ -191,8 +188,8 @@ BOOST_AUTO_TEST_CASE(panda_groups_and_states) {
   BOOST_TEST(ur5.warnings.at(0).find("material 'black' undefined") != std::string::npos);
 }
 
-BOOST_AUTO_TEST_CASE(panda_fk_geometry_only_matches_all_links) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(panda_fk_geometry_only_matches_all_links, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   for (const char* f : {"panda/panda.urdf", "ur5_robotiq85/ur5.urdf",
                         "iiwa_description/iiwa14_primitive_collision.urdf"}) {
     const auto model = dss::loadUrdf((kRobots / f).string());
@@ -215,8 +212,8 @@ BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(shared_robot_states)
 
-BOOST_AUTO_TEST_CASE(mbm_quirks_warn_not_refuse) {
-  if (!haveShared()) return;
+BOOST_AUTO_TEST_CASE(mbm_quirks_warn_not_refuse, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveShared());
   const auto panda = dss::loadUrdf((kRobots / "panda/panda.urdf").string());
   std::vector<std::string> notes;
   const auto q = dss::assembleState(

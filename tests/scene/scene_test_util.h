@@ -1,4 +1,4 @@
-// Helpers for the scene tests: the shared scene folder (tests skip when it is absent),
+// Helpers for the scene tests: the shared scene folder (its tests carry DSS_NEEDS_SHARED),
 // file listing, and checks on exception messages.
 #pragma once
 
@@ -45,11 +45,9 @@ inline std::string writeScratch(const std::string& name, const std::string& text
 
 inline std::string scenesDir() { return std::string(DSS_SHARED_DIR) + "/scenes"; }
 
-/// True (and prints why) when the shared scenes are absent: the caller returns.
-inline bool skipWithoutShared() {
-  if (std::filesystem::is_directory(scenesDir())) return false;
-  std::cout << "skipped: " << scenesDir() << " not found\n";
-  return true;
+/// The shared scenes are there (tests that need them carry DSS_NEEDS_SHARED).
+inline void requireShared() {
+  BOOST_REQUIRE_MESSAGE(std::filesystem::is_directory(scenesDir()), scenesDir() << " not found");
 }
 
 /// Files under dir (recursive) whose name matches `pattern`, sorted.

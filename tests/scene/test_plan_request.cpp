@@ -6,13 +6,14 @@
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_error.h"
 #include "scene/scene_test_util.h"
+#include "support/shared_data.h"
 
 using namespace dss_test;
 
 BOOST_AUTO_TEST_SUITE(plan_request)
 
-BOOST_AUTO_TEST_CASE(all_mbm_requests_load) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(all_mbm_requests_load, DSS_NEEDS_SHARED) {
+  requireShared();
   int n = 0;
   for (const char* robot : {"mbm_panda", "mbm_ur5"}) {
     const bool panda = std::string(robot) == "mbm_panda";
@@ -37,8 +38,8 @@ BOOST_AUTO_TEST_CASE(all_mbm_requests_load) {
   BOOST_TEST(n == 105);
 }
 
-BOOST_AUTO_TEST_CASE(key_order_and_values) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(key_order_and_values, DSS_NEEDS_SHARED) {
+  requireShared();
   // request0001 of box lists `position` before `joint_name` for some joints.
   const dss::PlanRequest r =
       dss::loadPlanRequestYaml(scenesDir() + "/mbm_panda/box/request0001.yaml");

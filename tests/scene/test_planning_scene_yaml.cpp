@@ -10,6 +10,7 @@
 #include "dss/scene/planning_scene_yaml.h"
 #include "dss/scene/scene_error.h"
 #include "scene/scene_test_util.h"
+#include "support/shared_data.h"
 
 using namespace dss_test;
 
@@ -49,8 +50,8 @@ std::map<std::string, int> shapeCounts(const dss::Scene& s) {
 
 BOOST_AUTO_TEST_SUITE(planning_scene_yaml)
 
-BOOST_AUTO_TEST_CASE(all_mbm_scenes_load_with_their_objects) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(all_mbm_scenes_load_with_their_objects, DSS_NEEDS_SHARED) {
+  requireShared();
   int files = 0;
   for (const char* robot : {"mbm_panda", "mbm_ur5"}) {
     for (const auto& f : filesMatching(scenesDir() + "/" + robot, "scene[0-9]+\\.yaml")) {
@@ -83,8 +84,8 @@ BOOST_AUTO_TEST_CASE(all_mbm_scenes_load_with_their_objects) {
   BOOST_TEST(files == 7 * 10 + 7 * 5);
 }
 
-BOOST_AUTO_TEST_CASE(panda_scene_state_and_acm) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(panda_scene_state_and_acm, DSS_NEEDS_SHARED) {
+  requireShared();
   const dss::Scene s = dss::loadPlanningSceneYaml(scenesDir() + "/mbm_panda/box/scene0001.yaml");
   BOOST_TEST(s.robot_model_name == "panda");
   BOOST_TEST(s.robot_state.size() == 9u);
@@ -97,8 +98,8 @@ BOOST_AUTO_TEST_CASE(panda_scene_state_and_acm) {
 }
 
 // UR5 table_pick: object-level pose composed with the primitive pose (X_WO = pose * prim).
-BOOST_AUTO_TEST_CASE(ur5_table_pick_poses_are_composed) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(ur5_table_pick_poses_are_composed, DSS_NEEDS_SHARED) {
+  requireShared();
   const dss::Scene s =
       dss::loadPlanningSceneYaml(scenesDir() + "/mbm_ur5/table_pick/scene0001.yaml");
   const dss::Obstacle* can = nullptr;
@@ -136,8 +137,8 @@ BOOST_AUTO_TEST_CASE(ur5_table_pick_poses_are_composed) {
   BOOST_TEST(std::abs(R(1, 0) - sn) < 1e-12);
 }
 
-BOOST_AUTO_TEST_CASE(templates_load_in_base_link_frame) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(templates_load_in_base_link_frame, DSS_NEEDS_SHARED) {
+  requireShared();
   const auto files =
       filesMatching(scenesDir() + "/mbm_templates/configs/scenes", "scene_.*\\.yaml");
   BOOST_TEST(files.size() == 6u);
@@ -206,8 +207,8 @@ BOOST_AUTO_TEST_CASE(inline_mesh_map_forms_and_all_primitives) {
   BOOST_TEST((box.upper - Eigen::Vector3d(2, 3, 1)).norm() < 1e-15);
 }
 
-BOOST_AUTO_TEST_CASE(mesh_by_resource) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(mesh_by_resource, DSS_NEEDS_SHARED) {
+  requireShared();
   const std::string stl =
       scenesDir() + "/mbm_templates/configs/scenes/kitchen/meshes/cupboard_door_l.stl";
   const std::string text =

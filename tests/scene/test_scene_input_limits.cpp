@@ -13,6 +13,7 @@
 #include "dss/scene/scene_error.h"
 #include "dss/scene/scene_loader.h"
 #include "scene/scene_test_util.h"
+#include "support/shared_data.h"
 
 using namespace dss_test;
 
@@ -75,16 +76,16 @@ std::string firstRefusal(const Files& files, const dss::SceneInputLimits& limits
 
 BOOST_AUTO_TEST_SUITE(scene_input_limits)
 
-BOOST_AUTO_TEST_CASE(every_real_file_fits_the_largest_seen_values) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(every_real_file_fits_the_largest_seen_values, DSS_NEEDS_SHARED) {
+  requireShared();
   const Files files = sharedFiles();
   BOOST_TEST(files.scenes.size() == 6u + 70u + 35u + 1u + 8u + 2u);
   BOOST_TEST(files.requests.size() == 70u + 35u + 1u);
   BOOST_TEST(firstRefusal(files, largestSeen()) == "");
 }
 
-BOOST_AUTO_TEST_CASE(each_largest_seen_value_is_needed) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(each_largest_seen_value_is_needed, DSS_NEEDS_SHARED) {
+  requireShared();
   const Files files = sharedFiles();
   using Field = std::size_t dss::SceneInputLimits::*;
   const std::vector<std::pair<Field, std::string>> fields = {

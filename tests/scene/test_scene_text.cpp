@@ -9,13 +9,14 @@
 #include "dss/scene/scene_loader.h"
 #include "dss/scene/scene_text.h"
 #include "scene/scene_test_util.h"
+#include "support/shared_data.h"
 
 using namespace dss_test;
 
 BOOST_AUTO_TEST_SUITE(scene_text)
 
-BOOST_AUTO_TEST_CASE(shared_scene_files_load) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(shared_scene_files_load, DSS_NEEDS_SHARED) {
+  requireShared();
   // file -> (obstacles, objects); MANIFEST.md of the shared scenes.
   const std::map<std::string, std::pair<int, int>> expected = {
       {"example_box.scene", {1, 1}},
@@ -41,8 +42,8 @@ BOOST_AUTO_TEST_CASE(shared_scene_files_load) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(old_format_details) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(old_format_details, DSS_NEEDS_SHARED) {
+  requireShared();
   const dss::Scene s =
       dss::loadSceneText(scenesDir() + "/moveit_scene_files/exotica/example_box.scene");
   BOOST_TEST(s.name == "ExampleScene");

@@ -9,6 +9,7 @@
 #include "dss/scene/scene_loader.h"
 #include "dss/scene/urdf_world.h"
 #include "scene/scene_test_util.h"
+#include "support/shared_data.h"
 
 using namespace dss_test;
 
@@ -24,8 +25,8 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 
 BOOST_AUTO_TEST_SUITE(urdf_world)
 
-BOOST_AUTO_TEST_CASE(kitchen_loads) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(kitchen_loads, DSS_NEEDS_SHARED) {
+  requireShared();
   const dss::Scene s = dss::loadScene(kitchenDir() + "/kitchen.urdf");
   BOOST_TEST(s.name == "kitchen");
   BOOST_TEST(s.obstacles.size() == 5u);
@@ -46,8 +47,8 @@ BOOST_AUTO_TEST_CASE(kitchen_loads) {
   BOOST_TEST(orig.obstacles.size() == 5u);
 }
 
-BOOST_AUTO_TEST_CASE(kitchen_joint_policy) {
-  if (skipWithoutShared()) return;
+BOOST_AUTO_TEST_CASE(kitchen_joint_policy, DSS_NEEDS_SHARED) {
+  requireShared();
   dss::SceneLoadOptions opt;
   opt.urdf_require_fixed_joints = true;
   std::string m = thrownMessage<dss::SceneError>(

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "support/shared_data.h"
+
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
@@ -89,11 +91,7 @@ fs::path writeFile(const std::string& name, const std::string& text) {
   return p;
 }
 
-bool haveSamples() {
-  if (fs::exists(kSampleDir + "/sample_paper.jsonl")) return true;
-  BOOST_TEST_MESSAGE("pair samples absent (" << kSampleDir << "): skipping");
-  return false;
-}
+bool haveSamples() { return fs::exists(kSampleDir + "/sample_paper.jsonl"); }
 
 struct TierCounts {
   std::map<std::string, int> pairs, wrong, caps;
@@ -141,8 +139,8 @@ TierCounts runSamples(const std::string& algo, const std::string& mode) {
 
 BOOST_AUTO_TEST_SUITE(dss_pairs_samples)
 
-BOOST_AUTO_TEST_CASE(exact_dss_and_hybrid_are_never_wrong) {
-  if (!haveSamples()) return;
+BOOST_AUTO_TEST_CASE(exact_dss_and_hybrid_are_never_wrong, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveSamples());
   for (const std::string algo : {"dss", "hybrid"}) {
     TierCounts c = runSamples(algo, "exact");
     int total = 0;
@@ -154,8 +152,8 @@ BOOST_AUTO_TEST_CASE(exact_dss_and_hybrid_are_never_wrong) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(double_and_float_report_their_wrong_answers) {
-  if (!haveSamples()) return;
+BOOST_AUTO_TEST_CASE(double_and_float_report_their_wrong_answers, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveSamples());
   for (const std::string algo : {"dss", "hybrid"}) {
     TierCounts d = runSamples(algo, "double");
     BOOST_CHECK_MESSAGE(d.wrong["robust"] == 0, algo << " double wrong on the robust tier");
@@ -163,14 +161,14 @@ BOOST_AUTO_TEST_CASE(double_and_float_report_their_wrong_answers) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(gjk_and_fcl_report_their_wrong_answers) {
-  if (!haveSamples()) return;
+BOOST_AUTO_TEST_CASE(gjk_and_fcl_report_their_wrong_answers, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveSamples());
   for (const std::string mode : {"exact", "double", "float"}) runSamples("gjk", mode);
   runSamples("fcl", "double");
 }
 
-BOOST_AUTO_TEST_CASE(time_prints_one_summary_per_algorithm) {
-  if (!haveSamples()) return;
+BOOST_AUTO_TEST_CASE(time_prints_one_summary_per_algorithm, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(haveSamples());
   const Run r = runTool("--algo dss,gjk,fcl --time --repeat 3 --mode double " +
                         quote(kSampleDir + "/sample_paper.jsonl"));
   BOOST_REQUIRE_EQUAL(r.exit_code, 0);

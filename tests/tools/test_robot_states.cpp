@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "support/run_tool.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -55,11 +56,8 @@ BOOST_AUTO_TEST_CASE(a_planned_path_reads_back_into_dss_check) {
 // The Panda with its fingers held outside the arm group (and above their URDF limit, as
 // MotionBenchMaker starts them): the path file carries both finger columns (one a mimic), and
 // dss_check takes them as the rows' values.
-BOOST_AUTO_TEST_CASE(full_panda_states_with_finger_columns) {
-  if (!fs::exists(kPanda + "panda.urdf") || !fs::exists(kMbm + "request0001.yaml")) {
-    BOOST_TEST_MESSAGE("the shared Panda or MotionBenchMaker scenes are absent");
-    return;
-  }
+BOOST_AUTO_TEST_CASE(full_panda_states_with_finger_columns, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "panda.urdf") && fs::exists(kMbm + "request0001.yaml"));
   const std::string path = scratch("panda_path.csv").string();
   const auto plan =
       dss_test::runTool("dss_plan", {"--robot", kPanda + "panda.urdf", "--srdf",
