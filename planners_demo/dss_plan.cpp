@@ -71,6 +71,7 @@ const char* kUsage =
     "       dss_plan --robot R.urdf [--srdf S.srdf] --scene SCENE --request REQUEST.yaml\n"
     "       dss_plan --robot R.urdf [--srdf S.srdf] --problems DIR\n"
     "       dss_plan --benchmark [--runs N] [--log FILE] [any of the above]\n"
+    "       dss_plan --summarize FILE...      (the JSON lines of several runs, one summary)\n"
     "  options: --planner NAME (RRTConnect) --checker dss|fcl-hull|fcl-mesh (dss)\n"
     "           --motion discrete|continuous (discrete) --time SECONDS (10) --seed N (1)\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
@@ -78,7 +79,9 @@ const char* kUsage =
     "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, "
     "64)\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
-    "           --path FILE (CSV of the solution; with several problems FILE.<problem>.csv)\n"
+    "           --shard K/N (with --problems: every N-th problem in name order, from the K-th)\n"
+    "           --path FILE (CSV of the solution: every joint; several problems:\n"
+    "           FILE.<problem>.csv)\n"
     "           --render FILE.html (one self-contained page: the robot's collision geometry\n"
     "           replaying the path, drag to orbit, wheel to zoom; obstacles the checker pruned\n"
     "           greyed, states found invalid red; with the problem not solved, the approximate\n"
@@ -158,6 +161,8 @@ struct Args {
   unsigned runs = 10;
   std::string log = "dss_plan_benchmark.log";
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
+  long shard_k = 0, shard_n = 0;                        // --shard K/N (0: every problem)
+  std::vector<std::string> summarize;                   // --summarize FILE...
 };
 
 // A comma list of names; an empty or repeated name is a usage error.
@@ -377,6 +382,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (timed) j["checking_time_s"] = timed->seconds();
   j["planner"] = a.planner;
   j["motion"] = a.motion;
+  j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
   if (!start_valid) j["start_invalid"] = true;
@@ -583,6 +589,63 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
   return 0;
 }
 
+// "summary: solved S of N (planner, checker, seed); planning time median ..., p95 ...".
+void printSummary(std::ostream& out, int solved, std::vector<double> times,
+                  const std::string& planner, const std::string& checker, unsigned long seed) {
+  std::sort(times.begin(), times.end());
+  const double median = times[times.size() / 2];
+  const double p95 =
+      times[std::min(times.size() - 1, std::size_t(std::ceil(0.95 * times.size())) - 1)];
+  const std::ios::fmtflags flags = out.flags();
+  const std::streamsize precision = out.precision();
+  out << "summary: solved " << solved << " of " << times.size() << " (" << planner << ", "
+      << checker << ", seed " << seed << "); planning time median " << std::fixed
+      << std::setprecision(3) << median * 1e3 << " ms, p95 " << p95 * 1e3 << " ms\n";
+  out.flags(flags);
+  out.precision(precision);
+}
+
+// --summarize: the JSON lines of several runs (shards of one problem folder, say) merged into
+// the summary one run over all of them prints. Every line must come from the same planner,
+// checker and seed, and name each problem once.
+int summarizeRuns(const std::vector<std::string>& files) {
+  std::vector<double> times;
+  std::set<std::string> seen;
+  int solved = 0;
+  std::string planner, checker;
+  unsigned long seed = 0;
+  for (const std::string& file : files) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error(file + ": cannot open");
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      const std::string where = file + ":" + std::to_string(n);
+      nlohmann::json j;
+      try {
+        j = nlohmann::json::parse(line);
+        const std::string problem = j.at("problem");
+        const std::string p = j.at("planner"), c = j.at("checker");
+        const unsigned long s = j.at("seed");
+        if (seen.empty()) planner = p, checker = c, seed = s;
+        if (p != planner || c != checker || s != seed)
+          throw std::runtime_error("planner " + p + ", checker " + c + ", seed " +
+                                   std::to_string(s) + " differ from the first line's (" + planner +
+                                   ", " + checker + ", " + std::to_string(seed) + ")");
+        if (!seen.insert(problem).second)
+          throw std::runtime_error("problem '" + problem + "' appears twice");
+        solved += j.at("solved").get<bool>();
+        times.push_back(j.at("planning_time_s").get<double>());
+      } catch (const std::exception& e) {
+        throw std::runtime_error(where + ": " + e.what());
+      }
+    }
+  }
+  if (times.empty()) throw std::runtime_error("--summarize: no result lines in the files given");
+  printSummary(std::cout, solved, times, planner, checker, seed);
+  return solved == int(times.size()) ? 0 : 3;
+}
+
 int run(int argc, char** argv) {
   Args a;
   a.demo = argc == 1;
@@ -646,9 +709,28 @@ int run(int argc, char** argv) {
       a.log = cli.value(), log_given = true;
     else if (cli.flag("--demo"))
       a.demo = true;
+    else if (cli.option("--shard")) {
+      const std::string v = cli.value();
+      const auto slash = v.find('/');
+      const auto k = dss::cli::parseInteger(v.substr(0, slash).c_str(), 1, 1000000);
+      const auto n = slash == std::string::npos
+                         ? std::nullopt
+                         : dss::cli::parseInteger(v.substr(slash + 1).c_str(), 1, 1000000);
+      if (!k || !n || *k > *n) cli.error("--shard: expected K/N with 1 <= K <= N, got '" + v + "'");
+      a.shard_k = *k, a.shard_n = *n;
+    } else if (cli.flag("--summarize"))
+      a.summarize.push_back("");  // files follow as positionals
+    else if (!a.summarize.empty() && cli.positional("FILE"))
+      a.summarize.push_back(cli.value());
     else
       cli.unknown();
   }
+  if (!a.summarize.empty()) {
+    a.summarize.erase(a.summarize.begin());
+    if (a.summarize.empty()) cli.error("--summarize needs the JSON-lines files of the runs");
+    return summarizeRuns(a.summarize);
+  }
+  if (a.shard_n > 0 && a.problems.empty()) cli.error("--shard needs --problems");
   if (a.benchmark && !checker_given) a.checker = "dss,fcl-hull";
   a.planner_list = splitList(cli, "--planner", a.planner);
   a.checker_list = splitList(cli, "--checker", a.checker);
@@ -683,9 +765,22 @@ int run(int argc, char** argv) {
         {"dss_arm7/shelf", root + "/scenes/shelf.yaml", root + "/scenes/shelf_request.yaml"});
   } else {
     if (a.robot.empty()) cli.error("--robot is required");
-    if (!a.problems.empty())
+    if (!a.problems.empty()) {
       problems = listProblems(a.problems);
-    else if (!a.request.empty())
+      if (a.shard_n > 0) {
+        // Every N-th problem in name order, from the K-th: shards 1..N cover every problem
+        // once, whatever the machines they run on.
+        std::vector<ProblemFiles> share;
+        for (std::size_t k = 0; k < problems.size(); ++k)
+          if (long(k % std::size_t(a.shard_n)) == a.shard_k - 1) share.push_back(problems[k]);
+        problems = std::move(share);
+        if (problems.empty()) {
+          std::cerr << "dss_plan: shard " << a.shard_k << "/" << a.shard_n << " of " << a.problems
+                    << " holds no problem\n";
+          return 0;
+        }
+      }
+    } else if (!a.request.empty())
       problems.push_back({fs::path(a.request).stem().string(), a.scene, a.request});
     else
       cli.error("--request or --problems is required");
@@ -699,6 +794,15 @@ int run(int argc, char** argv) {
   std::vector<double> times;
   int solved = 0;
   for (std::size_t k = 0; k < problems.size(); ++k) {
+    // Each problem starts from the same seed, so that its result does not depend on which
+    // problems ran before it (shards and one whole run agree). OMPL reseeds its seed
+    // generator when asked again, and logs an error saying so: silenced.
+    if (k > 0) {
+      const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+      ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+      ompl::RNG::setSeed(a.seed);
+      ompl::msg::setLogLevel(level);
+    }
     const Outcome o = solveOne(a, robot, problems[k], a.demo);
     solved += o.solved;
     times.push_back(o.time);
@@ -707,14 +811,7 @@ int run(int argc, char** argv) {
                 << (o.solved ? "solved" : "FAILED") << " " << std::fixed << std::setprecision(2)
                 << o.time * 1e3 << " ms" << std::defaultfloat << "\n";
   }
-  std::sort(times.begin(), times.end());
-  const double median = times[times.size() / 2];
-  const double p95 =
-      times[std::min(times.size() - 1, std::size_t(std::ceil(0.95 * times.size())) - 1)];
-  std::ostream& sum = a.demo ? std::cout : std::cerr;
-  sum << "summary: solved " << solved << " of " << problems.size() << " (" << a.planner << ", "
-      << a.checker << ", seed " << a.seed << "); planning time median " << median * 1e3
-      << " ms, p95 " << p95 * 1e3 << " ms\n";
+  printSummary(a.demo ? std::cout : std::cerr, solved, times, a.planner, a.checker, a.seed);
   return solved == int(problems.size()) ? 0 : 3;
 }
 
