@@ -128,8 +128,9 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
       for (std::size_t eb = 0; eb < sb.elements.size() && free; ++eb) {
         const CollisionElement& A = *sa.elements[ea];
         const CollisionElement& B = *sb.elements[eb];
-        free = !intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad)
-                    .intersect;
+        const Result r =
+            intersect(A.shape, X[sa.link] * A.X_LS, B.shape, X[sb.link] * B.X_LS, exact, pad);
+        free = !r.intersect && r.status == Status::kDecided;
       }
     if (free) return mark(SelfPairTable::kFree);
     // Colliding: some element pair intersects under the six translations by sqrt(3) L (and a
@@ -143,7 +144,10 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
         for (int axis = 0; axis < 6 && all; ++axis) {
           Eigen::Isometry3d XB = X[sb.link] * B->X_LS;
           XB.translation()[axis / 2] += (axis % 2 ? -reach : reach);
-          all = intersect(A->shape, XA, B->shape, XB, exact).intersect;
+          // Only a decided intersection certifies: an answer at the cap or on invalid input
+          // (a pose that is not finite) says "intersect" without proving it.
+          const Result r = intersect(A->shape, XA, B->shape, XB, exact);
+          all = r.intersect && r.status == Status::kDecided;
         }
         if (all) return mark(SelfPairTable::kColliding);
       }

@@ -22,9 +22,9 @@ inline Pair loadPair(const double* p) {
 }
 inline void storePair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
 
-// sin and cos together, within about 2 ulp of libm for |x| < 1e5 (joint angles): Cody-Waite
-// reduction by pi/2 with a 33-bit leading part (k * kPio2Hi is exact for |k| < 2^20), then
-// Taylor polynomials on [-pi/4, pi/4] (truncation below 5e-17); the quadrant k mod 4 picks and
+// sin and cos together, within about 2 ulp of libm for |x| < 1e5 (joint angles; libm beyond):
+// Cody-Waite reduction by pi/2 with a 33-bit leading part (k * kPio2Hi is exact for |k| < 2^20),
+// then Taylor polynomials on [-pi/4, pi/4] (truncation below 5e-17); the quadrant k mod 4 picks and
 // negates them. Without branches, two joints per SIMD pair, so that the joints of a state are
 // evaluated together: one joint's two polynomial chains are long and serial, and evaluated
 // inside the kinematics loop they took about half of its time. Calling libm's sincos costs
@@ -71,6 +71,10 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
     const PairBits co = ((sb & swap) | (cb & ~swap)) ^ (kSign & (0 - (half ^ odd)));
     std::memcpy(s_out + i, &so, sizeof so);
     std::memcpy(c_out + i, &co, sizeof co);
+    // Beyond the reduction's range (joints without limits, or limits far beyond a turn) libm
+    // takes over: a rare branch, and every finite angle stays right.
+    for (int k = i; k < i + 2; ++k)
+      if (std::abs(x[k]) >= 1e5) s_out[k] = std::sin(x[k]), c_out[k] = std::cos(x[k]);
   }
 }
 

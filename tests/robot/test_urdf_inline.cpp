@@ -278,6 +278,16 @@ BOOST_AUTO_TEST_CASE(fast_sin_cos_matches_libm) {
     BOOST_TEST_REQUIRE(std::abs(s - std::sin(x)) <= 4e-16);  // 2 ulp of values <= 1
     BOOST_TEST_REQUIRE(std::abs(c - std::cos(x)) <= 4e-16);
   }
+  // Huge angles (joints without limits, URDF limits of 1e300) are right too, and NaN stays NaN.
+  for (const double x : {1e5, -3.5e5, 1e9, 123456789.123, 1e16, -1e300, 1.7e308}) {
+    double s, c;
+    dss::sinCosForKinematics(x, &s, &c);
+    BOOST_TEST(s == std::sin(x), x);
+    BOOST_TEST(c == std::cos(x), x);
+  }
+  double s, c;
+  dss::sinCosForKinematics(std::nan(""), &s, &c);
+  BOOST_TEST((std::isnan(s) && std::isnan(c)));
 }
 
 BOOST_AUTO_TEST_CASE(mesh_paths) {
