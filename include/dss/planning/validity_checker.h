@@ -33,7 +33,6 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
 
   const StateChecker& checker() const { return *checker_; }
   const std::shared_ptr<const StateChecker>& checkerPtr() const { return checker_; }
-  const GroupStateMap& stateMap() const { return *map_; }
   /// The checker's counters, with the states this adapter refused before asking it.
   CheckerCounters counters() const;
 
