@@ -10,25 +10,17 @@
 #include <random>
 
 #include "dss/mesh/mesh.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
 
 namespace {
 
-fs::path tempDir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("dss_test_mesh_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+fs::path tempDir() { return dss_test::scratchDir("mesh"); }
 
 std::string write(const std::string& name, const std::string& text) {
-  const fs::path p = tempDir() / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return dss_test::writeScratch("mesh", name, text);
 }
 
 const char* kTetraStl =

@@ -13,24 +13,16 @@
 
 #include "dss/robot/joint_states_csv.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path tempDir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("dss_test_csv_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+fs::path tempDir() { return dss_test::scratchDir("csv"); }
 
 std::string write(const std::string& name, const std::string& text) {
-  const fs::path p = tempDir() / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return dss_test::writeScratch("csv", name, text);
 }
 
 // Active joints j1 (revolute) and j2 (prismatic); m mimics j1 (2 q + 0.5); f is fixed.

@@ -15,6 +15,7 @@
 #include "dss/robot/kinematics.h"
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 using Eigen::Isometry3d;
@@ -22,20 +23,10 @@ using Eigen::Vector3d;
 
 namespace {
 
-fs::path tempDir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("dss_test_robot_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+fs::path tempDir() { return dss_test::scratchDir("robot"); }
 
 std::string write(const std::string& name, const std::string& text) {
-  const fs::path p = tempDir() / name;
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return dss_test::writeScratch("robot", name, text);
 }
 
 const char* kTetraStl =
