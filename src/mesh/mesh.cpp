@@ -80,9 +80,18 @@ struct QhullResult {
 QhullResult runQhull(const std::vector<Eigen::Vector3d>& pts) {
   QhullResult res;
   if (pts.size() < 4) return res;
+  // qhull computes with the coordinates as given: near 2^+-1000 its determinants overflow or
+  // underflow (a zero-length facet normal crashes it). It sees the points scaled by a power of
+  // two that brings the largest coordinate near 1, an exact change of every coordinate but the
+  // subnormal ones; its answer names input points, which are kept bit for bit.
+  double largest = 0.0;
+  for (const auto& p : pts) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  if (!(largest > 0.0)) return res;  // every point at the origin
+  int exponent = 0;
+  std::frexp(largest, &exponent);
   std::vector<coordT> coords(pts.size() * 3);
   for (std::size_t i = 0; i < pts.size(); ++i)
-    for (int k = 0; k < 3; ++k) coords[3 * i + k] = pts[i][k];
+    for (int k = 0; k < 3; ++k) coords[3 * i + k] = std::ldexp(pts[i][k], -exponent);
   // qhull reports a degenerate input on errfile; it is an expected outcome here (flat meshes),
   // handled by the caller, so the text goes to /dev/null.
   FILE* devnull = std::fopen("/dev/null", "w");

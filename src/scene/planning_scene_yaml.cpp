@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <map>
 #include <sstream>
 
 #include "dss/scene/scene_error.h"
@@ -137,6 +138,7 @@ class SceneYamlReader {
 
     // The file's own frames (world and fixed frames) are placed now; robot frames later.
     resolveFrames(scene, FrameMap{}, /*require_all=*/false);
+    scene_detail::makeObstacleNamesUnique(scene);
     return scene;
   }
 
@@ -269,6 +271,12 @@ class SceneYamlReader {
     const std::string id = y_.string(y_.require(obj, "id", fallback), fallback + " id");
     const std::string elem = "object '" + id + "'";
     if (id.empty()) y_.fail(obj, fallback + ": empty id");
+    // MoveIt's ADD replaces an object of the same id, so a repeated id would silently drop the
+    // first object there: the file is ambiguous.
+    const auto [first, inserted] = object_at_.emplace(id, y_.at(obj));
+    if (!inserted)
+      y_.fail(obj, elem + " given twice (first at " + first->second +
+                       "); collision object ids must be unique");
     y_.checkKeys(obj, elem, "moveit_msgs/CollisionObject", kCollisionObjectKeys);
 
     if (YamlReader::has(obj, "operation")) {
@@ -457,6 +465,7 @@ class SceneYamlReader {
   const SceneInputLimits& limits_;
   std::string base_dir_;
   scene_detail::MeshBudget mesh_budget_;
+  std::map<std::string, std::string> object_at_;  // collision object id -> "file:line"
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -68,6 +69,7 @@ class SceneTextReader {
     if (!ended) scene.warnings.push_back(source_ + ": no final '.' line");
     for (std::size_t i = next_; i < lines_.size(); ++i)
       scene.warnings.push_back(at(lines_[i]) + ": text after the final '.' ignored");
+    scene_detail::makeObstacleNamesUnique(scene);
     return scene;
   }
 
@@ -155,6 +157,12 @@ class SceneTextReader {
   void readObject(const std::string& id, const Line& header, Scene& scene) {
     if (id.empty()) fail(header, "object without an id");
     const std::string elem = "object '" + id + "'";
+    // MoveIt adds the shapes of a repeated id to the first object (and moves the whole object
+    // to the later pose): a file that repeats an id is ambiguous.
+    const auto [first, inserted] = object_lines_.emplace(id, header.number);
+    if (!inserted)
+      fail(header, elem + " given twice (first at " + source_ + ":" +
+                       std::to_string(first->second) + "); object ids must be unique");
     // MoveIt's rule: a line with spaces after "* id" is the object position (new format).
     const Line& probe = nextLine(elem + " shape count");
     Eigen::Isometry3d X_WObj = Eigen::Isometry3d::Identity();
@@ -270,6 +278,7 @@ class SceneTextReader {
   scene_detail::MeshBudget mesh_budget_;
   std::vector<Line> lines_;
   std::size_t next_ = 0;
+  std::map<std::string, int> object_lines_;  // object id -> line of its "* id"
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
 
 #include "../common/nesting_scan.h"
 #include "dss/mesh/mesh.h"
@@ -48,6 +49,25 @@ void checkMeshScale(const Eigen::Vector3d& scale, const std::string& where) {
         << scale.z() << "\"): it must be finite and non-zero, or the mesh collapses";
       throw SceneError(s.str());
     }
+}
+
+void makeObstacleNamesUnique(Scene& scene) {
+  // Every name as read is reserved first, so that a renamed obstacle never takes the name an
+  // obstacle further on was given.
+  std::unordered_set<std::string> taken;
+  for (const Obstacle& o : scene.obstacles) taken.insert(o.name);
+  std::unordered_set<std::string> kept;
+  for (Obstacle& o : scene.obstacles) {
+    if (kept.insert(o.name).second) continue;
+    for (std::size_t n = 2;; ++n) {
+      std::string candidate = o.name + "#" + std::to_string(n);
+      if (taken.insert(candidate).second) {
+        o.name = std::move(candidate);
+        kept.insert(o.name);
+        break;
+      }
+    }
+  }
 }
 
 std::string parentDir(const std::string& path) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dss/core/convex_hull.h"
+#include "dss/scene/scene.h"
 #include "dss/scene/scene_load_options.h"
 
 namespace dss {
@@ -64,6 +65,12 @@ ConvexHull pointsHull(const std::vector<Eigen::Vector3d>& points, const std::str
 /// limits.max_xml_depth, before a recursive parser sees it.
 void checkXmlDepth(const std::string& text, const std::string& file,
                    const SceneInputLimits& limits);
+
+/// Obstacle names are the object id, or "id/k" for shape k of a several-shape object, and an
+/// id may itself hold a '/': object "a/1" and shape 1 of object "a" would share a name. The
+/// later of two equal names gets "#2" appended (or the first free "#n"), so that every name
+/// is unique in the scene, as Obstacle::name promises.
+void makeObstacleNamesUnique(Scene& scene);
 
 /// Folder of a path ("" -> ".").
 std::string parentDir(const std::string& path);

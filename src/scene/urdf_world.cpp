@@ -254,6 +254,7 @@ class UrdfWorldReader {
         scene.obstacles.push_back(std::move(o));
       }
     }
+    scene_detail::makeObstacleNamesUnique(scene);
     return scene;
   }
 

@@ -258,6 +258,37 @@ BOOST_AUTO_TEST_CASE(degenerate_sets_fall_back_to_points) {
   BOOST_TEST(maxSupport(h.points(), Vector3d(1, 1, 1)) == 1e-12);
 }
 
+// qhull sees the points scaled by a power of two: the same integer clouds scaled by 2^k at
+// the ends of the double range give the same hull (the vertices scaled by 2^k, bit for bit)
+// and supports equal to the scan's. Unscaled, 2^-1000 made qhull's facet normals vanish and
+// crash it (found by fuzz/fuzz_core).
+BOOST_AUTO_TEST_CASE(hulls_at_extreme_scales) {
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<int> coord(-1000, 1000);
+  for (int cloud = 0; cloud < 20; ++cloud) {
+    std::vector<Vector3d> ints;
+    const int n = 40 + 10 * (cloud % 5);
+    for (int i = 0; i < n; ++i) ints.emplace_back(coord(rng), coord(rng), coord(rng));
+    dss::mesh::HullInfo info0;
+    const auto h0 = dss::mesh::convexHull(ints, "ints", &info0);
+    BOOST_TEST_REQUIRE(info0.full_dimensional);
+    for (const int k : {-1060, -1000, -600, 600, 1000, 1012}) {
+      std::vector<Vector3d> scaled;
+      for (const Vector3d& p : ints)
+        scaled.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+      dss::mesh::HullInfo info;
+      const auto h = dss::mesh::convexHull(scaled, "scaled", &info);
+      BOOST_TEST(info.full_dimensional, "k " << k);
+      BOOST_TEST(h.size() == h0.size(), "k " << k);
+      for (int t = 0; t < 200; ++t) {
+        const Vector3d d = randomUnit(rng);
+        BOOST_TEST_REQUIRE(h.points()[h.supportIndex(d)].dot(d) == maxSupport(scaled, d),
+                           "k " << k << ", d = " << d.transpose());
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_throws_naming_the_source) {
   try {
     dss::mesh::convexHull({}, "link x collision[2]");

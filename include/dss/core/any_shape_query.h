@@ -5,7 +5,9 @@
 //
 // Two convex hulls that both sit at the exact identity pose are taken as given by their world
 // vertices: the exact mode then decides them exactly (result.h). Every other pair is posed,
-// and its "disjoint" answers are certified.
+// and its "disjoint" answers are certified. Every number of a query (shape parameters, poses,
+// padding) is checked first: a NaN or an infinity anywhere answers "intersect" with status
+// invalid_input, whatever the mode and the iteration cap.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -1,7 +1,9 @@
 // Swept decisions on model shapes, compiled once in the core library: a shape moving from one
 // pose to another is bounded by the convex hull of its two poses (SweptHull) grown by a
 // padding that covers the bulge of the motion between them; the other shape is posed, or
-// swept too. The conservative motion validator of the planning layer is built on these.
+// swept too. The conservative motion validator of the planning layer is built on these. As in
+// any_shape_query.h, a NaN or an infinity in any shape parameter, pose or padding answers
+// "intersect" with status invalid_input.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -13,7 +13,8 @@ namespace dss {
 
 struct Obstacle {
   /// Unique in its scene: the object id for a one-shape object, "id/k" for shape k of a
-  /// several-shape object.
+  /// several-shape object; when an id holding a '/' already took that name (object "a/1"
+  /// against shape 1 of object "a"), the later one gets "#2" appended (or the first free "#n").
   std::string name;
   /// The collision object (MoveIt id, .scene object, URDF link) it belongs to; the allowed
   /// collision matrix names objects by this id.

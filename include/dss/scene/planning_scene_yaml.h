@@ -24,7 +24,9 @@
 // ros2 topic pub); SceneLoadOptions::unknown_keys_are_warnings turns it into a line in
 // Scene::warnings instead. A key given twice in one mapping is always an error (YAML requires
 // unique keys; yaml-cpp would keep one value silently). Fields we do not use (object_colors,
-// is_diff, subframes, octomap content, ...) are accepted and not read.
+// is_diff, subframes, octomap content, ...) are accepted and not read. A collision object id
+// given twice is an error naming both lines: MoveIt's ADD would replace the first object by
+// the second, silently.
 // Budgets: obstacles, shapes per object, allowed-collision-matrix names, mesh vertices and
 // triangles are counted after alias expansion and bounded by SceneLoadOptions::limits
 // (dss/scene/input_limits.h) before they are read; an error names the limit.

@@ -14,6 +14,8 @@
 // As MoveIt does, the line after `* id` decides the version: with spaces it is the object
 // position (new format), without it is the shape count (old format). Shape poses are
 // relative to the object pose. Poses are in the world frame. Errors name the file and line.
+// An object id given twice is an error naming both lines (MoveIt would add the second
+// object's shapes to the first and move them all to the second pose).
 // Counts are digits only and bounded before use by SceneLoadOptions::limits (shapes per
 // object, obstacles, vertices and triangles per mesh, mesh vertices per scene); a count over
 // its limit is an error naming the line and the limit. Only `limits` of the options applies.

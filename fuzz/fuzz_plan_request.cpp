@@ -1,0 +1,42 @@
+// Fuzz target: the MotionPlanRequest YAML reader (dss::parsePlanRequestYaml), then the request's
+// joints checked against a fixed set of movable and held joint names
+// (dss::checkRequestJoints). Any bytes must end in a PlanRequest or a std::exception naming
+// the source (key errors are tried strict and as warnings, by the last input byte); a request
+// that loads must have one position per start joint and only finite values.
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <set>
+#include <string>
+
+#include "dss/scene/plan_request.h"
+#include "fuzz_support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  dss::PlanRequestOptions options;
+  options.unknown_keys_are_warnings = size > 0 && (data[size - 1] & 1);
+  dss::PlanRequest request;
+  try {
+    request = dss::parsePlanRequestYaml(text, "fuzz_request.yaml", options);
+  } catch (const std::exception&) {
+    return 0;
+  }
+  if (request.start_names.size() != request.start_positions.size())
+    dss_fuzz::propertyFailed("start names and positions differ in length");
+  for (double v : request.start_positions)
+    if (!std::isfinite(v)) dss_fuzz::propertyFailed("a non-finite start position");
+  for (const auto& g : request.goals)
+    for (const auto& c : g.joint_constraints)
+      if (!std::isfinite(c.position) || !std::isfinite(c.tolerance_above) ||
+          !std::isfinite(c.tolerance_below) || !std::isfinite(c.weight))
+        dss_fuzz::propertyFailed("a non-finite goal constraint value");
+  (void)request.startState();
+  static const std::set<std::string> movable = {"joint1", "joint2", "joint3", "shoulder_pan"};
+  static const std::set<std::string> held = {"finger_joint", "gripper"};
+  try {
+    (void)dss::checkRequestJoints(request, movable, held);
+  } catch (const std::exception&) {
+  }
+  return 0;
+}
