@@ -3,15 +3,16 @@
 # each run: executions, crashes (inputs libFuzzer saved as crash-, leak-, timeout- or oom-
 # artifacts), the slowest input's time and the peak memory.
 #
-#   fuzz/long_run.sh BUILD_DIR [--time SECONDS] [--runs N] [--parallel P] [TARGET...]
+#   fuzz/long_run.sh BUILD_DIR [--time SECONDS] [--runs N] [--parallel P] [--seed S] [TARGET...]
 #
 # Each target runs until SECONDS (default 3600) or N executions (default 10^7), whichever
-# comes first, P targets at a time (default 1: the machine may be shared). Corpora are
+# comes first, P targets at a time (default 1: the machine may be shared), with libFuzzer's
+# random seed S (default: libFuzzer's own, from the clock). Corpora are
 # BUILD_DIR/fuzz/corpus/<target> (fuzz/make_corpora.sh builds them; run here when missing) and
 # grow with what the run finds; artifacts go to BUILD_DIR/fuzz/artifacts/<target>/, logs to
 # BUILD_DIR/fuzz/logs/<target>.log, the summary table (Markdown) to BUILD_DIR/fuzz/summary.md
 # and stdout. Exits 1 when any target saved an artifact. A short check, as CI runs it:
-#   fuzz/long_run.sh build-fuzz --time 10
+#   fuzz/long_run.sh build-fuzz --time 10 --seed 1
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 1 ]; then
@@ -23,12 +24,14 @@ shift
 seconds=3600
 runs=10000000
 parallel=1
+seed=()
 targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --time) seconds=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --parallel) parallel=$2; shift 2 ;;
+    --seed) seed=(-seed="$2"); shift 2 ;;
     -*) echo "unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -60,7 +63,7 @@ run_one() {
   # artifacts (not counted as crashes). Leak detection stays on (ASan's LeakSanitizer).
   "$build/fuzz/$t" "$corpus" -artifact_prefix="$artifacts/" -max_total_time="$seconds" \
     -runs="$runs" -max_len="$(max_len "$t")" -timeout=25 -rss_limit_mb=2560 \
-    -report_slow_units=10 -print_final_stats=1 > "$log" 2>&1 || status=$?
+    -report_slow_units=10 -print_final_stats=1 "${seed[@]}" > "$log" 2>&1 || status=$?
   echo "wall_seconds: $((SECONDS - start))" >> "$log"
   echo "exit_status: $status" >> "$log"
 }
