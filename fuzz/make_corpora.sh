@@ -95,15 +95,20 @@ fi
 # last byte (the first value FuzzedDataProvider takes) selects each of the four scenarios.
 mkdir -p "$out/fuzz_core"
 tmpdir=$(mktemp -d)
-python3 - "$tmpdir" << 'EOF'
-import random, sys
-rng = random.Random(2024)
-for scenario in range(4):
-    for i in range(16):
-        size = rng.choice([64, 128, 256, 512])
-        data = bytes(rng.randrange(256) for _ in range(size - 1)) + bytes([scenario])
-        open(f"{sys.argv[1]}/core_{scenario}_{i}", "wb").write(data)
-EOF
+RANDOM=2024  # bash's generator, seeded: the same seeds on every machine
+for scenario in 0 1 2 3; do
+  for i in $(seq 0 15); do
+    sizes=(64 128 256 512)
+    size=${sizes[RANDOM % 4]}
+    bytes=""
+    for _ in $(seq 2 "$size"); do
+      printf -v b '\\%03o' $((RANDOM % 256))
+      bytes+=$b
+    done
+    printf -v b '\\%03o' "$scenario"
+    printf "$bytes$b" > "$tmpdir/core_${scenario}_$i"
+  done
+done
 add fuzz_core '' "$tmpdir"/*
 rm -rf "$tmpdir"
 
