@@ -8,15 +8,14 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <set>
 #include <stdexcept>
+
+#include "mesh_file_check.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -154,56 +153,6 @@ void checkPoints(const std::vector<Eigen::Vector3d>& points, const std::string& 
                                " is not finite");
 }
 
-// Collada number lists as assimp 5.2 (Debian bookworm) reads them: a character that is neither
-// part of a number nor white space inside <p>, <vcount>, <v>, <h>, <float_array> or <int_array>
-// stops its index parser without advancing, and it appends the same value until memory runs
-// out (three gigabytes for "0 1,2"). A file is scanned first when it is named *.dae or declares
-// <COLLADA near its start; such a character is an error naming the file, line and element.
-bool looksLikeCollada(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".dae") return true;
-  std::ifstream in(path, std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  return head.find("<COLLADA") != std::string::npos;
-}
-
-void checkColladaNumberLists(const std::string& path, const std::string& text) {
-  static const char* const kLists[] = {"p", "vcount", "v", "h", "float_array", "int_array"};
-  std::size_t pos = 0;
-  while ((pos = text.find('<', pos)) != std::string::npos) {
-    ++pos;
-    std::size_t end = pos;
-    while (end < text.size() &&
-           (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))
-      ++end;
-    const std::string name = text.substr(pos, end - pos);
-    if (std::find(std::begin(kLists), std::end(kLists), name) == std::end(kLists)) continue;
-    const std::size_t open_end = text.find('>', end);
-    if (open_end == std::string::npos) return;  // assimp's XML parser reports the file
-    if (text[open_end - 1] == '/') continue;    // <p/>: empty
-    const std::size_t close = text.find('<', open_end + 1);
-    const std::size_t stop = close == std::string::npos ? text.size() : close;
-    for (std::size_t i = open_end + 1; i < stop; ++i) {
-      const char c = text[i];
-      if (std::isdigit(static_cast<unsigned char>(c)) ||
-          std::isspace(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' ||
-          c == 'e' || c == 'E')
-        continue;
-      const long line = 1 + std::count(text.begin(), text.begin() + i, '\n');
-      throw std::runtime_error("cannot read mesh " + path + ": line " + std::to_string(line) +
-                               ": <" + name + "> holds a character that is not part of a number" +
-                               (std::isprint(static_cast<unsigned char>(c))
-                                    ? std::string(" ('") + c + "')"
-                                    : std::string()));
-    }
-    pos = stop;
-  }
-}
-
 }  // namespace
 
 TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale,
@@ -212,11 +161,7 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale,
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw std::runtime_error("mesh file not found: " + path);
-  if (looksLikeCollada(path)) {
-    std::ifstream in(path, std::ios::binary);
-    checkColladaNumberLists(
-        path, std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()));
-  }
+  checkMeshFile(path);  // mesh_file_check.h: format, counts and lists before assimp
   Assimp::Importer importer;
   // RViz and MoveIt ignore the Collada up-axis (a Z-up DAE is used as written); the <unit>
   // scale stays in the root transform and is applied below.

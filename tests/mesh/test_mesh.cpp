@@ -124,10 +124,11 @@ BOOST_AUTO_TEST_CASE(collada_units_applied_up_axis_ignored) {
   BOOST_TEST(std::abs(maxSupport(m.vertices, Vector3d::UnitX()) - 0.01) < 1e-9);
 }
 
-// assimp appends the value before a stray character of a Collada number list until memory
-// runs out (3 GB for one comma, found by fuzz/fuzz_mesh): such a file is refused first, naming
-// the line and the element, whatever its name says it is.
-BOOST_AUTO_TEST_CASE(collada_number_lists_are_checked_before_assimp) {
+// What assimp would trust is checked first (mesh_file_check.h), each error naming the file and
+// the line: a stray character in a Collada number list (assimp appended one index until 3 GB
+// were gone, found by fuzz/fuzz_mesh), counts larger than the file (assimp reserved them before
+// reading), formats other than STL, DAE and OBJ.
+BOOST_AUTO_TEST_CASE(mesh_files_are_checked_before_assimp) {
   auto refused = [](const std::string& name, const std::string& text, const std::string& what) {
     const std::string path = write(name, text);
     try {
@@ -145,12 +146,23 @@ BOOST_AUTO_TEST_CASE(collada_number_lists_are_checked_before_assimp) {
     return t;
   };
   refused("comma.dae", with("0 1 3 0 3 2", "0 1 3,0 3 2"), "line 12: <p> holds a character");
-  refused("letter.dae", with("0 0 0 1 0 0", "0 0 x 1 0 0"), "line 6: <float_array>");
-  refused("named.stl", with("0 1 3 0 3 2", "0 1 3;0 3 2"), "(';')");  // sniffed by content
-  // Signs, exponents and line breaks are numbers and white space.
-  const auto m = dss::mesh::loadMesh(
+  refused("letter.DAE", with("0 0 0 1 0 0", "0 0 x 1 0 0"), "line 6: <float_array>");
+  refused("count.dae", with("<triangles count=\"4\"", "<triangles count=\"2000000000\""),
+          "line 11: <triangles> declares a count larger than the file");
+  refused("tetra.fbx", kTetraDae, "the format '.fbx' is not read");
+  refused("tetra", kTetraDae, "a file without an extension is not read");
+  // Signs, exponents and line breaks are numbers and white space; a count the file can hold
+  // is fine.
+  auto m = dss::mesh::loadMesh(
       write("signs.dae", with("0 0 0 1 0 0 0 1 0 0 0 2", "+0 -0 0e0\n1E0 0 0 0 1.0 0 0 0 2")));
   BOOST_TEST(m.triangles.size() == 4u);
+
+  // assimp's PLY reader aborted the process on a binary face list of length zero.
+  refused("zero_faces.ply",
+          "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar int "
+          "vertex_indices\nend_header\n" +
+              std::string(1, '\0'),
+          "the format '.ply' is not read");
 }
 
 BOOST_AUTO_TEST_CASE(errors_name_the_path) {

@@ -27,8 +27,10 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;
 };
 
-/// Reads a mesh file (STL binary/ASCII, DAE, OBJ, anything assimp reads), applies the node
-/// transforms of the file (Collada units included, up-axis ignored) and then `scale` per axis.
+/// Reads a mesh file (STL binary/ASCII, COLLADA .dae or OBJ, through assimp, after the checks of
+/// src/mesh/mesh_file_check.h: other formats, Collada counts larger than the file and stray
+/// characters in its number lists are errors), applies the node transforms of the file
+/// (Collada units included, up-axis ignored) and then `scale` per axis.
 /// A negative scale component mirrors the mesh (triangles are flipped to stay outward when
 /// the mirroring is odd). Throws std::runtime_error naming the path: missing file, unreadable
 /// file, no vertices, a non-finite vertex or a non-finite scale; std::length_error (also

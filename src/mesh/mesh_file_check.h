@@ -1,0 +1,20 @@
+// What a mesh file must pass before assimp reads it. assimp (5.2 in Debian bookworm) trusts a
+// file's declared counts and, on some malformed number lists, never stops reading: a few
+// hundred bytes can make it allocate gigabytes or loop. The checks here bound what it will do.
+#pragma once
+
+#include <string>
+
+namespace dss::mesh {
+
+/// Throws std::runtime_error naming `path` (and the line or element where there is one) when
+///  - the file's extension is not one of the formats read: STL, COLLADA (.dae), OBJ
+///    (case-insensitive; assimp picks its reader by the extension, so no other reader runs).
+///    assimp's other readers are left out: its PLY reader, for one, aborts the process on a
+///    binary face list of length zero (an assertion Debian's build keeps);
+///  - a COLLADA number list (<p>, <vcount>, <v>, <h>, <float_array>, <int_array>) holds a
+///    character that is neither part of a number nor white space, or a count="N" attribute
+///    exceeds the file's size in bytes (every counted item takes at least one byte).
+void checkMeshFile(const std::string& path);
+
+}  // namespace dss::mesh
