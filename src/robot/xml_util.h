@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../common/nesting_scan.h"
+#include "../common/utf8_scan.h"
 
 namespace dss::xml {
 
@@ -37,8 +38,11 @@ inline void checkDepth(const std::string& text, const std::string& file, std::si
         " (RobotInputLimits::max_xml_depth; raise it with " + raise_with + ")");
 }
 
-/// Parses a whole document; malformed XML throws with the line and column.
+/// Parses a whole document; text that is not UTF-8 (input_scan::firstInvalidUtf8, checked
+/// before tinyxml reads it) and malformed XML throw with the line and column.
 inline void parse(TiXmlDocument& doc, const std::string& text, const std::string& file) {
+  const input_scan::Utf8Error bad = input_scan::firstInvalidUtf8(text);
+  if (bad.found) throw std::runtime_error(input_scan::utf8Message(file, bad));
   doc.Parse(text.c_str());
   if (doc.Error())
     throw std::runtime_error(file + ":" + std::to_string(doc.ErrorRow()) + ":" +

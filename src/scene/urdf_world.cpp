@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "../common/urdf_tree_check.h"
+#include "../common/utf8_scan.h"
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
 
@@ -63,6 +64,9 @@ const char* linkOf(const TiXmlElement* joint, const char* tag) {
 }
 
 XmlFacts scanXml(const std::string& text, const std::string& path) {
+  // tinyxml reads past the buffer on a truncated UTF-8 character (utf8_scan.h).
+  const input_scan::Utf8Error bad = input_scan::firstInvalidUtf8(text);
+  if (bad.found) throw SceneError(input_scan::utf8Message(path, bad));
   TiXmlDocument doc;
   doc.Parse(text.c_str());
   if (doc.Error()) {

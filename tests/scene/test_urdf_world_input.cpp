@@ -156,4 +156,10 @@ BOOST_AUTO_TEST_CASE(zero_mesh_scales_are_refused) {
              -0.1f);  // STL stores floats
 }
 
+// tinyxml read past the buffer on a truncated UTF-8 character (see tests/robot/test_xml_utf8.cpp).
+BOOST_AUTO_TEST_CASE(a_world_that_is_not_utf8_is_refused) {
+  BOOST_TEST(worldError("latin1.urdf", "<robot name=\"w\">\n<link name=\"\xE1") ==
+             ":2:13: the text is not UTF-8 (byte 0xE1); XML files are read as UTF-8");
+}
+
 BOOST_AUTO_TEST_SUITE_END()
