@@ -14,7 +14,10 @@ namespace dss::mesh {
 ///    binary face list of length zero (an assertion Debian's build keeps);
 ///  - a COLLADA number list (<p>, <vcount>, <v>, <h>, <float_array>, <int_array>) holds a
 ///    character that is neither part of a number nor white space, or a count="N" attribute
-///    exceeds the file's size in bytes (every counted item takes at least one byte).
+///    exceeds the file's size in bytes (every counted item takes at least one byte);
+///  - a COLLADA file nests deeper than 256 levels, is not UTF-8, or has an array whose count
+///    attribute is missing or differs from its number of values, an accessor without a count
+///    or reaching past the array it names, or a primitive list without a count.
 void checkMeshFile(const std::string& path);
 
 }  // namespace dss::mesh

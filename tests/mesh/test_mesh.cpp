@@ -149,6 +149,22 @@ BOOST_AUTO_TEST_CASE(mesh_files_are_checked_before_assimp) {
   refused("letter.DAE", with("0 0 0 1 0 0", "0 0 x 1 0 0"), "line 6: <float_array>");
   refused("count.dae", with("<triangles count=\"4\"", "<triangles count=\"2000000000\""),
           "line 11: <triangles> declares a count larger than the file");
+  // assimp crashed on an array without a count (found by fuzz/fuzz_mesh).
+  refused("nocount.dae", with("count=\"12\"", "couft=\"12\""),
+          "line 6: <float_array> needs a count attribute of digits");
+  refused("short.dae", with("count=\"12\"", "count=\"11\""),
+          "line 6: <float_array> holds 12 values, not its count 11");
+  refused("past.dae", with("count=\"4\" stride", "count=\"5\" stride"),
+          "line 7: <accessor> reads past its array 'g-pos-array' of 12 values");
+  refused("nosource.dae", with("source=\"#g-pos-array\"", "source=\"#elsewhere\""),
+          "line 7: <accessor> needs a source naming an array of the file");
+  refused("noprimcount.dae", with("<triangles count=\"4\"", "<triangles"),
+          "line 11: <triangles> needs a count attribute of digits");
+  std::string deep = kTetraDae, open, close;
+  for (int i = 0; i < 300; ++i) open += "<a>", close += "</a>";
+  deep.insert(deep.find("<asset>"), open + close);
+  refused("deep.dae", deep, "XML nesting deeper than 256 levels");
+  refused("latin1.dae", with("<asset>", "<asset><!-- \xE9 -->"), "is not UTF-8 (byte 0xE9)");
   refused("tetra.fbx", kTetraDae, "the format '.fbx' is not read");
   refused("tetra", kTetraDae, "a file without an extension is not read");
   // Signs, exponents and line breaks are numbers and white space; a count the file can hold
