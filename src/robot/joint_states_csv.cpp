@@ -121,8 +121,13 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
       const RobotJoint& m = robot.joints[columns[c].mimic];
       const double expected = m.mimic_multiplier * q[m.mimic_active] + m.mimic_offset;
       const double tol = 1e-9 * std::max({1.0, std::abs(expected), std::abs(values[c])});
-      if (!(std::abs(values[c] - expected) <= tol) &&
-          !(std::isnan(values[c]) && std::isnan(expected)))
+      // Within rounding when both are finite; otherwise the same infinity (a leader at inf
+      // puts its mimic at inf), or NaN for NaN.
+      const bool agree =
+          std::isfinite(values[c]) && std::isfinite(expected)
+              ? std::abs(values[c] - expected) <= tol
+              : values[c] == expected || (std::isnan(values[c]) && std::isnan(expected));
+      if (!agree)
         throw std::runtime_error(where + ": mimic joint '" + csv.columns[c] + "' is " + row[c] +
                                  ", but its leader '" +
                                  robot.joints[robot.active_joints[m.mimic_active]].name +
