@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dss/robot/urdf_loader.h"
+#include "support/thrown_message.h"
 
 namespace {
 
@@ -23,13 +24,7 @@ std::string joint(const std::string& name, const std::string& parent, const std:
 }
 
 std::string loadError(const std::string& text) {
-  try {
-    dss::loadUrdfString(text, "tree.urdf", ".");
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  BOOST_ERROR("expected an exception");
-  return std::string();
+  return dss_test::thrownMessage([&] { dss::loadUrdfString(text, "tree.urdf", "."); });
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/thrown_message.h"
 
 namespace fs = std::filesystem;
 
@@ -21,17 +22,6 @@ std::string nested(const std::string& head, const std::string& tail, int depth) 
   for (int i = 0; i < depth; ++i) s += "<a>";
   for (int i = 0; i < depth; ++i) s += "</a>";
   return s + tail;
-}
-
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  BOOST_ERROR("expected an exception");
-  return std::string();
 }
 
 const std::string kUrdfHead = "<?xml version=\"1.0\"?>\n<robot name=\"r\"><link name=\"base\">";
@@ -49,14 +39,15 @@ BOOST_AUTO_TEST_CASE(a_deeply_nested_urdf_is_refused_before_parsing) {
                                ": XML element nesting exceeds the limit of 256 "
                                "(RobotInputLimits::max_xml_depth; raise it with "
                                "LoadOptions::limits.max_xml_depth)";
-  BOOST_TEST(errorOf([&] { dss::loadUrdfString(text, "deep.urdf", "."); }) == expected);
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::loadUrdfString(text, "deep.urdf", "."); }) ==
+             expected);
   // Through a file too.
   const fs::path dir =
       fs::temp_directory_path() / ("dss_test_nesting_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "deep.urdf";
   std::ofstream(file) << text;
-  BOOST_TEST(errorOf([&] { dss::loadUrdf(file.string()); })
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::loadUrdf(file.string()); })
                  .find(file.string() + ":2:" + std::to_string(column) +
                        ": XML element nesting exceeds the limit of 256") == 0u);
   fs::remove_all(dir);
@@ -68,7 +59,7 @@ BOOST_AUTO_TEST_CASE(the_urdf_limit_is_exact_and_raised_by_the_options) {
   o.limits.max_xml_depth = 5;
   BOOST_TEST(dss::loadUrdfString(text, "ok.urdf", ".", o).links.size() == 1u);
   o.limits.max_xml_depth = 4;
-  BOOST_TEST(errorOf([&] {
+  BOOST_TEST(dss_test::thrownMessage([&] {
                dss::loadUrdfString(text, "ok.urdf", ".", o);
              }).find("XML element nesting exceeds the limit of 4") != std::string::npos);
 }
@@ -78,7 +69,7 @@ BOOST_AUTO_TEST_CASE(a_deeply_nested_srdf_is_refused_before_parsing) {
   const std::string head = "<robot name=\"r\">\n<group name=\"g\">";
   const std::string text = nested(head, "</group></robot>\n", 100000);
   const std::size_t column = std::string("<group name=\"g\">").size() + 254 * 3 + 1;
-  BOOST_TEST(errorOf([&] { dss::parseSrdf(text, "deep.srdf"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::parseSrdf(text, "deep.srdf"); }) ==
              "deep.srdf:2:" + std::to_string(column) +
                  ": XML element nesting exceeds the limit of 256 "
                  "(RobotInputLimits::max_xml_depth; raise it with the limits argument of "
@@ -88,7 +79,9 @@ BOOST_AUTO_TEST_CASE(a_deeply_nested_srdf_is_refused_before_parsing) {
   const std::string shallow = nested(head, "</group></robot>\n", 3);
   BOOST_TEST(dss::parseSrdf(shallow, "ok.srdf", raised).groups.size() == 1u);
   raised.max_xml_depth = 4;
-  BOOST_TEST(errorOf([&] { dss::parseSrdf(shallow, "ok.srdf", raised); }).find("ok.srdf:2:") == 0u);
+  BOOST_TEST(dss_test::thrownMessage([&] {
+               dss::parseSrdf(shallow, "ok.srdf", raised);
+             }).find("ok.srdf:2:") == 0u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

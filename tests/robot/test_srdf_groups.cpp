@@ -10,6 +10,7 @@
 
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/thrown_message.h"
 
 namespace {
 
@@ -37,17 +38,6 @@ std::string chain(int n, int copies) {
   return s;
 }
 
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  BOOST_ERROR("expected an exception");
-  return std::string();
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(srdf_group_expansion)
@@ -72,13 +62,13 @@ BOOST_AUTO_TEST_CASE(a_group_that_includes_itself_is_named) {
   <group name="self"><group name="self"/></group>
 </robot>)";
   const dss::Srdf srdf = dss::parseSrdf(text, "cycle.srdf");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "g0"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "g0"); }) ==
              "cycle.srdf: group 'g0' includes itself through its subgroups: 'g0' -> 'g1' -> "
              "'g2' -> 'g0'");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "g2"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "g2"); }) ==
              "cycle.srdf: group 'g2' includes itself through its subgroups: 'g2' -> 'g0' -> "
              "'g1' -> 'g2'");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "self"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "self"); }) ==
              "cycle.srdf: group 'self' includes itself through its subgroups: 'self' -> 'self'");
   BOOST_TEST(dss::checkSrdfAgainstModel(model, srdf).size() == 4u);  // every group is in a cycle
 }
@@ -88,7 +78,7 @@ BOOST_AUTO_TEST_CASE(a_long_chain_is_bounded_by_the_depth_limit) {
   const dss::RobotModel model = arm();
   const std::string text = chain(100000, 1);
   const dss::Srdf srdf = dss::parseSrdf(text, "chain.srdf");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "g0"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "g0"); }) ==
              "chain.srdf: group 'g0': subgroups nest deeper than the limit of 64 ('g0' -> 'g1' "
              "-> 'g2' -> 'g3' -> ... (56 more) -> 'g60' -> 'g61' -> 'g62' -> 'g63'; "
              "RobotInputLimits::max_group_depth; raise it with the limits argument of loadSrdf, "
@@ -103,7 +93,7 @@ BOOST_AUTO_TEST_CASE(a_long_chain_is_bounded_by_the_depth_limit) {
   BOOST_TEST(dss::groupActiveJoints(model, dss::parseSrdf(chain(64, 1), "c.srdf", raised), "g0") ==
              std::vector<int>{1});
   raised.max_group_depth = 64;
-  BOOST_TEST(errorOf([&] {
+  BOOST_TEST(dss_test::thrownMessage([&] {
                dss::groupActiveJoints(model, dss::parseSrdf(chain(64, 1), "c.srdf", raised), "g0");
              }).find("nest deeper than the limit of 64") != std::string::npos);
 }
@@ -116,11 +106,11 @@ BOOST_AUTO_TEST_CASE(missing_subgroups_and_joints_are_named) {
   <group name="c"><group name="b"/></group>
 </robot>)",
                                         "missing.srdf");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "a"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "a"); }) ==
              "missing.srdf: no group 'nope' (a subgroup of group 'a')");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "c"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "c"); }) ==
              "missing.srdf: group 'b' names joint 'j9' that robot 'arm' lacks");
-  BOOST_TEST(errorOf([&] { dss::groupActiveJoints(model, srdf, "zz"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::groupActiveJoints(model, srdf, "zz"); }) ==
              "missing.srdf: no group 'zz'");
 }
 

@@ -11,6 +11,7 @@
 #include "../../src/common/utf8_scan.h"
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/thrown_message.h"
 
 namespace {
 
@@ -35,16 +36,6 @@ bool validUtf8(const std::string& s) {
     i += len;
   }
   return true;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  BOOST_ERROR("expected an exception");
-  return std::string();
 }
 
 }  // namespace
@@ -93,11 +84,11 @@ BOOST_AUTO_TEST_CASE(readers_refuse_text_that_is_not_utf8) {
   // The reproducer's shape: a lead byte of a three-byte character at the very end.
   const std::string srdf =
       "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <group name=\"g\"/> <\xE1";
-  BOOST_TEST(errorOf([&] { dss::parseSrdf(srdf, "bad.srdf"); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::parseSrdf(srdf, "bad.srdf"); }) ==
              "bad.srdf:3:22: the text is not UTF-8 (byte 0xE1); XML files are read as UTF-8");
   const std::string urdf =
       "<?xml version=\"1.0\"?>\n<robot name=\"r\"><link name=\"caf\xE9\"/></robot>\n";
-  BOOST_TEST(errorOf([&] { dss::loadUrdfString(urdf, "latin1.urdf", "."); }) ==
+  BOOST_TEST(dss_test::thrownMessage([&] { dss::loadUrdfString(urdf, "latin1.urdf", "."); }) ==
              "latin1.urdf:2:32: the text is not UTF-8 (byte 0xE9); XML files are read as UTF-8");
   // The same name in UTF-8 is read.
   const std::string utf8 =

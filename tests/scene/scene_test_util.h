@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "support/thrown_message.h"
+
 namespace dss_test {
 
 /// A folder of this test process for the files the tests write, removed at exit.
@@ -66,18 +68,6 @@ inline std::string readAll(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-/// Runs f, which must throw E; returns the message (empty and a failed check otherwise).
-template <class E>
-std::string thrownMessage(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  BOOST_ERROR("expected an exception");
-  return std::string();
 }
 
 inline bool contains(const std::string& s, const std::string& part) {
