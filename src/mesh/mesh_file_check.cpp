@@ -42,8 +42,7 @@ bool numberChar(char c) {
 }
 
 // A stray character inside a number list stops assimp's index parser without advancing: it then
-// appends the same value until memory runs out (three gigabytes for "0 1,2"). A count="N" that
-// the file cannot hold makes it reserve N entries up front.
+// appends the same value until memory runs out (three gigabytes for "0 1,2").
 void scanColladaText(const std::string& path, const std::string& text) {
   static const char* const kLists[] = {"p", "vcount", "v", "h", "float_array", "int_array"};
   std::size_t pos = 0;
@@ -56,29 +55,6 @@ void scanColladaText(const std::string& path, const std::string& text) {
     const std::string name = text.substr(pos, end - pos);
     const std::size_t open_end = text.find('>', end);
     if (open_end == std::string::npos) return;  // assimp's XML parser reports the file
-    // Count attributes of any element.
-    const std::string tag = text.substr(end, open_end - end);
-    for (std::size_t c = tag.find("count"); c != std::string::npos; c = tag.find("count", c + 1)) {
-      std::size_t k = c + 5;
-      while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
-      if (k >= tag.size() || tag[k] != '=') continue;
-      ++k;
-      while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
-      if (k >= tag.size() || (tag[k] != '"' && tag[k] != '\'')) continue;
-      ++k;
-      std::uint64_t n = 0;
-      bool digits = false;
-      while (k < tag.size() && std::isdigit(static_cast<unsigned char>(tag[k])) &&
-             n <= text.size()) {
-        n = 10 * n + static_cast<std::uint64_t>(tag[k] - '0');
-        digits = true;
-        ++k;
-      }
-      if (digits && n > text.size())
-        fail(path, "line " + std::to_string(lineOf(text, end + c)) + ": <" + name +
-                       "> declares a count larger than the file (" + std::to_string(text.size()) +
-                       " bytes)");
-    }
     if (std::find(std::begin(kLists), std::end(kLists), name) == std::end(kLists) ||
         text[open_end - 1] == '/') {  // not a number list, or an empty one (<p/>)
       pos = open_end;
@@ -116,9 +92,10 @@ std::uint64_t tokens(const char* s) {
   return n;
 }
 
-// The structure assimp's Collada reader takes on trust: a missing count attribute (it then
-// reads an unset count and crashed, found by fuzz_mesh), arrays whose count is not their
-// number of values, accessors reaching past their array, primitives without a count.
+// The structure assimp's Collada reader takes on trust: counts larger than the file, a missing
+// count attribute (it then reads an unset count and crashed, found by fuzz_mesh), arrays whose
+// count is not their number of values, accessors reaching past their array, primitives without
+// a count.
 void checkColladaStructure(const std::string& path, const std::string& text) {
   TiXmlDocument doc;
   doc.Parse(text.c_str());
@@ -143,6 +120,12 @@ void checkColladaStructure(const std::string& path, const std::string& text) {
     const TiXmlElement* e = stack.back();
     stack.pop_back();
     const std::string name = e->Value();
+    // A count the file cannot hold (every counted item takes at least a byte): assimp reserves
+    // what it declares before reading.
+    const char* declared = e->Attribute("count");
+    if (digitsOnly(declared) &&
+        (std::string(declared).size() > 18 || std::stoull(declared) > text.size()))
+      at(e, "declares a count larger than the file (" + std::to_string(text.size()) + " bytes)");
     if (is(name, kArrays)) {
       const char* count = e->Attribute("count");
       if (!digitsOnly(count) || std::string(count).size() > 18)
