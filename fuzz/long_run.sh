@@ -58,12 +58,15 @@ run_one() {
   local corpus=$build/fuzz/corpus/$t artifacts=$build/fuzz/artifacts/$t log=$build/fuzz/logs/$t.log
   mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
   rm -f "$artifacts"/*
-  local start=$SECONDS status=0
+  local start=$SECONDS status=0 TIMEFORMAT='cpu_seconds: %U %S'
   # -timeout: an input taking 25 s is a hang; inputs slower than 10 s are kept as slow-unit
   # artifacts (not counted as crashes). Leak detection stays on (ASan's LeakSanitizer).
-  "$build/fuzz/$t" "$corpus" -artifact_prefix="$artifacts/" -max_total_time="$seconds" \
+  # The CPU time (user and system) is recorded beside the wall time: on a shared machine it
+  # says how much of the wall time the target ran.
+  { time "$build/fuzz/$t" "$corpus" -artifact_prefix="$artifacts/" -max_total_time="$seconds" \
     -runs="$runs" -max_len="$(max_len "$t")" -timeout=25 -rss_limit_mb=2560 \
-    -report_slow_units=10 -print_final_stats=1 "${seed[@]}" > "$log" 2>&1 || status=$?
+    -report_slow_units=10 -print_final_stats=1 "${seed[@]}" > "$log" 2>&1 || status=$?; } 2> "$log.cpu"
+  cat "$log.cpu" >> "$log" && rm -f "$log.cpu"
   echo "wall_seconds: $((SECONDS - start))" >> "$log"
   echo "exit_status: $status" >> "$log"
 }
@@ -80,8 +83,8 @@ wait
 stat() { grep -m1 "^stat::$2:" "$1" | awk '{print $2}'; }
 summary=$build/fuzz/summary.md
 {
-  echo "| target | executions | crashes | slowest input (s) | peak RSS (MB) | wall (s) |"
-  echo "|---|---|---|---|---|---|"
+  echo "| target | executions | crashes | slowest input (s) | peak RSS (MB) | wall (s) | CPU (s) |"
+  echo "|---|---|---|---|---|---|---|"
 } > "$summary"
 failed=0
 for t in "${targets[@]}"; do
@@ -89,9 +92,10 @@ for t in "${targets[@]}"; do
   crashes=$(find "$build/fuzz/artifacts/$t" -type f \( -name 'crash-*' -o -name 'leak-*' \
     -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
   [ "$crashes" -eq 0 ] || failed=1
-  printf '| %s | %s | %s | %s | %s | %s |\n' "$t" "$(stat "$log" number_of_executed_units)" \
+  printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$t" "$(stat "$log" number_of_executed_units)" \
     "$crashes" "$(stat "$log" slowest_unit_time_sec)" "$(stat "$log" peak_rss_mb)" \
-    "$(grep -m1 '^wall_seconds:' "$log" | awk '{print $2}')" >> "$summary"
+    "$(grep -m1 '^wall_seconds:' "$log" | awk '{print $2}')" \
+    "$(grep -m1 '^cpu_seconds:' "$log" | awk '{printf "%.0f", $2 + $3}')" >> "$summary"
 done
 cat "$summary"
 if [ "$failed" -ne 0 ]; then
