@@ -55,6 +55,7 @@
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/robot/joint_states_csv.h"
+#include "dss/robot/multi_dof.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "path_replay.h"
@@ -79,6 +80,8 @@ const char* kUsage =
     "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, "
     "64)\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
+    "           --workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (bounds of planar and floating\n"
+    "           joints' translation; default: the request's workspace_parameters)\n"
     "           --shard K/N (with --problems: every N-th problem in name order, from the K-th)\n"
     "           --path FILE (CSV of the solution: every joint; several problems:\n"
     "           FILE.<problem>.csv)\n"
@@ -163,6 +166,7 @@ struct Args {
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
   long shard_k = 0, shard_n = 0;                        // --shard K/N (0: every problem)
   std::vector<std::string> summarize;                   // --summarize FILE...
+  std::vector<double> workspace;  // --workspace: min x, y, z, max x, y, z (empty: the request's)
 };
 
 // A comma list of names; an empty or repeated name is a usage error.
@@ -207,15 +211,33 @@ struct LoadedProblem {
   dss::Scene scene;                        // --render: the scene as loaded, before pruning
 };
 
-LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files) {
+LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& loaded_robot,
+                          const ProblemFiles& files) {
   const dss::PlanRequest req = dss::loadPlanRequestYaml(files.request);
+  // Planar and floating joints: their translation within --workspace, else the request's
+  // workspace_parameters (as MoveIt bounds them).
+  dss::LoadedRobot robot = loaded_robot;
+  if (!a.workspace.empty())
+    robot =
+        dss::withWorkspace(robot, Eigen::Vector3d(a.workspace[0], a.workspace[1], a.workspace[2]),
+                           Eigen::Vector3d(a.workspace[3], a.workspace[4], a.workspace[5]));
+  else if (req.workspace)
+    robot = dss::withWorkspace(robot, req.workspace->first, req.workspace->second);
   // Every stored warning reaches the user: the request's here, the scene's with the
   // problem's below, the robot's and the SRDF's once in run().
   for (const auto& w : req.warnings)
     std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
   dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
   dss::Scene loaded = a.render.empty() ? dss::Scene{} : scene;
-  const std::map<std::string, double> start = req.startState();
+  std::map<std::string, double> start = req.startState();
+  {
+    std::vector<std::string> notes;
+    for (const auto& [n, v] : dss::multiDofStateValues(*robot.model, req.start_multi_dof, &notes))
+      start[n] = v;
+    for (const auto& w : notes)
+      std::cerr << "dss_plan: " << files.name << ": warning: " << files.request << ": " << w
+                << "\n";
+  }
   LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding),
                    {},
                    {},
@@ -225,6 +247,7 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& robot, const Pr
     std::set<std::string> movable(p.map->jointNames().begin(), p.map->jointNames().end());
     std::set<std::string> held;
     for (const auto& j : robot.model->joints) held.insert(j.name);
+    for (const auto& n : robot.model->activeJointNames()) held.insert(n);
     held.insert("virtual_joint");
     dss::checkRequestJoints(req, movable, held);
   }
@@ -676,6 +699,8 @@ int run(int argc, char** argv) {
       a.padding = cli.number(0.0, 1e3);
     else if (cli.option("--self-padding"))
       a.self_padding = cli.number(0.0, 1e3);
+    else if (cli.option("--workspace"))
+      a.workspace = cli.numbers(6);
     else if (cli.option("--resolution"))
       a.resolution = cli.number(0.0, 1.0);
     else if (cli.option("--path"))

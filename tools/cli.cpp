@@ -135,6 +135,27 @@ double ArgCursor::number(double min, double max) {
         ", got '" + text + "'");
 }
 
+std::vector<double> ArgCursor::numbers(std::size_t count) {
+  const std::string text = value();
+  std::vector<double> out;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t end = text.find(',', begin);
+    const std::string item = text.substr(begin, end == std::string::npos ? end : end - begin);
+    const auto x = parseNumber(item.c_str(), std::numeric_limits<double>::lowest(),
+                               std::numeric_limits<double>::max());
+    if (!x) break;
+    out.push_back(*x);
+    if (end == std::string::npos) {
+      if (out.size() == count) return out;
+      break;
+    }
+    begin = end + 1;
+  }
+  error(std::string(name_) + ": expected " + std::to_string(count) +
+        " finite numbers separated by commas, got '" + text + "'");
+}
+
 long long ArgCursor::integer(long long min, long long max) {
   const char* text = value();
   if (const auto x = parseInteger(text, min, max)) return *x;

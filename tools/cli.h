@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dss::cli {
 
@@ -59,6 +60,8 @@ class ArgCursor {
   /// value() parsed by parseNumber / parseInteger; a usage error naming the option (or the
   /// positional's label), the accepted range and the text when it does not parse.
   double number(double min, double max);
+  /// The value as exactly `count` finite numbers separated by commas ("1,2.5,-3").
+  std::vector<double> numbers(std::size_t count);
   long long integer(long long min, long long max);
 
   /// Usage error for the current argument: "unknown option --x" or "unexpected argument 'x'".

@@ -38,6 +38,8 @@ const char* kUsage =
     "[--self-padding r]\n"
     "                 [--repeat K] [--describe]\n"
     "                 [--mode exact|double|float] [--no-obb-stage] [--threads N]\n"
+    "                 [--workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]  (bounds of planar and\n"
+    "                 floating joints' translation; needed when the group moves one)\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n";
@@ -123,6 +125,7 @@ int run(int argc, char** argv) {
   std::string mode = "exact";
   bool box_stage = true;
   int threads = 1;
+  std::vector<double> workspace;
   dss::cli::ArgCursor cli(argc, argv, "dss_check", kUsage);
   while (cli.next()) {
     if (cli.option("--robot"))
@@ -155,6 +158,8 @@ int run(int argc, char** argv) {
         cli.error("--mode: expected exact, double or float, got '" + mode + "'");
     } else if (cli.flag("--no-obb-stage"))
       box_stage = false;
+    else if (cli.option("--workspace"))
+      workspace = cli.numbers(6);
     else if (cli.option("--threads"))
       threads = static_cast<int>(cli.integer(1, kMaxThreads));
     else
@@ -167,6 +172,9 @@ int run(int argc, char** argv) {
   ompl::RNG::setSeed(seed);
 
   dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  if (!workspace.empty())
+    r = dss::withWorkspace(r, Eigen::Vector3d(workspace[0], workspace[1], workspace[2]),
+                           Eigen::Vector3d(workspace[3], workspace[4], workspace[5]));
   // Every stored warning reaches the user: the robot's and the SRDF's here, the scene's
   // through the problem's warnings below.
   for (const auto& w : r.warnings()) std::cerr << "dss_check: warning: " << w << "\n";

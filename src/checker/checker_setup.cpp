@@ -6,6 +6,7 @@
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/robot/joint_state.h"
+#include "dss/robot/multi_dof.h"
 
 namespace dss {
 
@@ -19,12 +20,28 @@ std::vector<std::string> LoadedRobot::warnings() const {
 LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path,
                       const LoadOptions& options) {
   LoadedRobot r;
-  r.model = std::make_shared<const RobotModel>(loadUrdf(urdf_path, options));
+  RobotModel model = loadUrdf(urdf_path, options);
   if (!srdf_path.empty()) {
     r.srdf = loadSrdf(srdf_path, options.limits);
+    // Planar and floating virtual joints become part of the model (multi_dof.h).
+    for (const auto& v : r.srdf->virtual_joints)
+      applyVirtualJoint(model, v.name, v.type, v.parent_frame, v.child_link, srdf_path);
+  }
+  r.model = std::make_shared<const RobotModel>(std::move(model));
+  if (r.srdf) {
     const auto problems = checkSrdfAgainstModel(*r.model, *r.srdf);
     if (!problems.empty()) throw std::runtime_error(srdf_path + ": " + problems.front());
   }
+  return r;
+}
+
+LoadedRobot withWorkspace(const LoadedRobot& robot, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi) {
+  if (robot.model->multi_dof_joints.empty()) return robot;
+  auto model = std::make_shared<RobotModel>(*robot.model);
+  setMultiDofTranslationBounds(*model, lo, hi);
+  LoadedRobot r = robot;
+  r.model = std::move(model);
   return r;
 }
 
@@ -47,7 +64,10 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
   s.group_active = resolveGroup(robot, &group);
   s.group = group;
   std::vector<std::string> ignored;
-  s.held = heldState(*robot.model, {scene.robot_state, start}, &ignored);
+  std::map<std::string, double> saved = scene.robot_state;
+  for (const auto& [n, v] : multiDofStateValues(*robot.model, scene.robot_multi_dof, &s.warnings))
+    saved[n] = v;
+  s.held = heldState(*robot.model, {saved, start}, &ignored);
   for (const auto& n : ignored)
     if (n != "virtual_joint")
       s.warnings.push_back("joint " + n +

@@ -11,6 +11,7 @@
 #include "dss/checker/inner_balls.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/pose_links.h"
+#include "dss/robot/multi_dof.h"
 
 namespace dss {
 
@@ -34,6 +35,22 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   for (int a : group_active_) in_group_.at(a) = 1;
   for (std::size_t a = 0; a < m.numActiveJoints(); ++a)
     if (!in_group_[a]) held_active_.push_back(int(a));
+  frozen_.assign(m.numActiveJoints(), 0);
+  for (const MultiDofJoint& md : m.multi_dof_joints) {
+    bool moved = false;
+    for (int j : md.joints)
+      for (int k = 0; k < m.joints[j].numVariables(); ++k)
+        moved = moved || in_group_[m.joints[j].active_index + k];
+    if (moved) continue;
+    for (int j : md.joints)
+      for (int k = 0; k < m.joints[j].numVariables(); ++k)
+        frozen_[m.joints[j].active_index + k] = 1;
+  }
+  if (std::find(frozen_.begin(), frozen_.end(), 1) != frozen_.end()) {
+    const RobotModel folded = foldedRobot();
+    kin_ = Kinematics(folded, /*all_links=*/false);
+    sweep_kin_ = kin_;
+  }
 
   // Which links move with the group (parents come before children in model order).
   moves_.assign(m.links.size(), 0);
@@ -61,11 +78,39 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   pair_blocks_ = buildPairBlocks(*this, options.pair_block_min_saving);
 }
 
+RobotModel CollisionModel::foldedRobot() const {
+  RobotModel folded = *robot_;
+  for (RobotJoint& j : folded.joints) {
+    if (j.active_index < 0 || !frozen_[j.active_index]) continue;
+    const double* v = held_.data() + j.active_index;
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    if (j.type == JointType::kPrismatic)
+      motion.translation() = v[0] * j.axis;
+    else if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
+      motion.linear() = Eigen::AngleAxisd(v[0], j.axis).toRotationMatrix();
+    else if (j.type == JointType::kBall)
+      motion.linear() = Eigen::Quaterniond(v[3], v[0], v[1], v[2]).normalized().toRotationMatrix();
+    // The identity stays exactly the identity (no rounding from the products).
+    if (!motion.matrix().isIdentity(0.0)) j.X_PJ = j.X_PJ * motion;
+    j.type = JointType::kFixed;
+  }
+  return folded;
+}
+
 bool CollisionModel::withinBounds(const double* q) const {
   const RobotModel& m = *robot_;
   for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
     if (!std::isfinite(q[a])) return false;
+    if (frozen_[a]) {
+      if (q[a] != held_[a]) return false;
+      continue;
+    }
     const RobotJoint& j = m.joints[m.active_joints[a]];
+    if (j.type == JointType::kBall && int(a) == j.active_index) {
+      const double* v = q + a;
+      if (!(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]) >= kMinQuaternionNorm))
+        return false;
+    }
     if (j.type == JointType::kContinuous || !j.limits.has_position_limits) continue;
     if (!in_group_[a] && q[a] == held_[a]) continue;
     if (!(q[a] >= j.limits.lower && q[a] <= j.limits.upper)) return false;
@@ -123,7 +168,9 @@ void CollisionModel::placeOnPoseLinks() {
       el.center_P = X * el.center_L;
     }
   }
-  sweep_kin_ = Kinematics(m, wanted);
+  sweep_kin_ = std::find(frozen_.begin(), frozen_.end(), 1) != frozen_.end()
+                   ? Kinematics(foldedRobot(), wanted)
+                   : Kinematics(m, wanted);
 }
 
 void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {

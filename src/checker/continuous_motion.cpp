@@ -27,6 +27,14 @@ Scratch& scratch() {
   return s;
 }
 
+// The unit quaternion at t of the slerp from a to b (x, y, z, w) along the shorter arc.
+void slerpInto(const double* a, const double* b, double t, double* out) {
+  const Eigen::Quaterniond qa = Eigen::Quaterniond(a[3], a[0], a[1], a[2]).normalized();
+  const Eigen::Quaterniond qb = Eigen::Quaterniond(b[3], b[0], b[1], b[2]).normalized();
+  const Eigen::Quaterniond r = qa.slerp(t, qb);  // Eigen's slerp takes the shorter arc
+  out[0] = r.x(), out[1] = r.y(), out[2] = r.z(), out[3] = r.w();
+}
+
 }  // namespace
 
 ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker,
@@ -41,6 +49,10 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
     const auto& s = m.slots()[k];
     if (s.moves)
       chains_[k] = chainAbove(m.robot(), s.link, -1, s.center_L.norm() + s.radius, m.held());
+  }
+  for (std::size_t a = 0; a < m.robot().numActiveJoints(); ++a) {
+    const RobotJoint& j = m.robot().joints[m.robot().active_joints[a]];
+    if (j.type == JointType::kBall && j.active_index == int(a)) balls_.push_back(int(a));
   }
   // Units in the order of the state sweep: robot vs scene, then self pairs.
   for (const auto& s : m.slots()) {
@@ -146,6 +158,10 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       qa[i] = q0[i] + iv.ta * (q1[i] - q0[i]);
       qb[i] = q0[i] + iv.tb * (q1[i] - q0[i]);
     }
+    for (int a : balls_) {  // quaternions: slerp along the shorter arc, as OMPL's SO(3)
+      slerpInto(q0 + a, q1 + a, iv.ta, qa + a);
+      slerpInto(q0 + a, q1 + a, iv.tb, qb + a);
+    }
     m.kinematics().computeLinkPoses(qa, sc.XA.data());
     m.kinematics().computeLinkPoses(qb, sc.XB.data());
     paddings(qa, qb, sc.pad.data());
@@ -171,6 +187,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
+    for (int a : balls_) slerpInto(q0 + a, q1 + a, tm, qa + a);
     if (checker_->collides(qa)) {  // a colliding state on the motion: done
       *last = iv.ta;
       return false;

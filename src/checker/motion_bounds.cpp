@@ -55,6 +55,7 @@ std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, d
         t.multiplier = j.mimic_multiplier;
       }
       t.prismatic = j.type == JointType::kPrismatic;
+      t.ball = j.type == JointType::kBall;
       t.reach = reach;
       out.push_back(t);
     }
@@ -64,10 +65,35 @@ std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, d
   return out;
 }
 
+double quaternionAngle(const double* a, const double* b) {
+  const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]);
+  const double nb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]);
+  if (!(na > 0.0 && nb > 0.0 && std::isfinite(na) && std::isfinite(nb)))
+    return std::numeric_limits<double>::infinity();
+  double dot = 0.0;
+  for (int k = 0; k < 4; ++k) dot += a[k] * b[k];
+  const double s = dot < 0.0 ? -1.0 : 1.0;  // the shorter arc
+  double chord2 = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double d = a[k] / na - s * b[k] / nb;
+    chord2 += d * d;
+  }
+  // The unit quaternions are alpha = 2 asin(chord / 2) apart on the 3-sphere; the rotation
+  // turns by twice that. Rounding: a relative margin and an absolute one.
+  const double half_chord = std::min(1.0, 0.5 * std::sqrt(chord2));
+  return 4.0 * std::asin(half_chord) * (1.0 + 1e-12) + 1e-14;
+}
+
 MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1) {
   MotionBound b;
   for (const ChainTerm& t : chain) {
     if (t.active < 0) continue;
+    if (t.ball) {
+      const double angle = quaternionAngle(q0 + t.active, q1 + t.active);
+      b.length += angle * t.reach;
+      b.turn += angle;
+      continue;
+    }
     const double dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
     if (t.prismatic) {
       b.length += dq;

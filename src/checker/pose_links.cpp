@@ -22,6 +22,10 @@ PoseLinks poseLinks(const RobotModel& m, const Kinematics& kin, const std::vecto
       motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
     else if (j.type == JointType::kPrismatic)
       motion.translation() = v * j.axis;
+    else if (j.type == JointType::kBall) {
+      const double* h = held.data() + j.active_index;
+      motion.linear() = Eigen::Quaterniond(h[3], h[0], h[1], h[2]).normalized().toRotationMatrix();
+    }
     if (!motion.matrix().allFinite()) continue;
     p.pose_of[l] = p.pose_of[link.parent_link];
     p.X_PL[l] = p.X_PL[link.parent_link] * j.X_PJ * motion;

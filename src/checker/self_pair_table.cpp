@@ -56,7 +56,7 @@ std::optional<SelfPairTable> buildSelfPairTable(const RobotModel& m, const Kinem
   double per_var[2] = {0.0, 0.0};
   for (const Term& term : terms) {
     const int v = term.chain->active;
-    if (v < 0 || !std::isfinite(term.per_unit)) return std::nullopt;
+    if (v < 0 || term.chain->ball || !std::isfinite(term.per_unit)) return std::nullopt;
     if (!in_group[v]) {
       int f = 0;
       while (f < t.num_fixed && t.fixed_var[f] != v) ++f;

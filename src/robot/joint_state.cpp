@@ -21,6 +21,17 @@ std::vector<double> assembleState(const RobotModel& model,
   };
   std::vector<std::pair<int, double>> mimics;
   for (const auto& [name, value] : named) {
+    if (!std::isfinite(value))
+      throw std::runtime_error(source + ": joint '" + name + "' has a non-finite value");
+    // A quaternion variable of a floating joint (J/rot_x ...) is a value, not a joint.
+    if (const int vi = model.variableIndex(name);
+        vi >= 0 && model.joints[model.active_joints[vi]].type == JointType::kBall) {
+      if (value < -1.0 || value > 1.0)
+        note("quaternion variable '" + name + "' value " + std::to_string(value) +
+             " is outside [-1, 1]; kept");
+      q[vi] = value;
+      continue;
+    }
     const int ji = model.jointIndex(name);
     if (ji < 0)
       throw std::runtime_error(source + ": joint '" + name + "' is not a joint of robot '" +
@@ -63,12 +74,12 @@ std::vector<double> heldState(const RobotModel& robot,
   std::vector<double> q = robot.defaultState();
   for (const auto& m : overrides)
     for (const auto& [name, value] : m) {
-      const int j = robot.jointIndex(name);
-      if (j < 0 || robot.joints[j].active_index < 0) {
+      const int v = robot.variableIndex(name);
+      if (v < 0) {
         if (ignored) ignored->push_back(name);
         continue;
       }
-      q[robot.joints[j].active_index] = value;
+      q[v] = value;
     }
   return q;
 }

@@ -80,12 +80,19 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
         if (name.empty()) throw std::runtime_error(where + ": empty joint name in the header");
         if (std::find(csv.columns.begin(), csv.columns.end(), name) != csv.columns.end())
           throw std::runtime_error(where + ": joint '" + name + "' appears twice in the header");
+        Column col;
+        // A state value by name (a joint, or a variable of a floating joint's rotation).
+        if (const int v = robot.variableIndex(name); v >= 0) {
+          col.active = v;
+          csv.columns.push_back(name);
+          columns.push_back(col);
+          continue;
+        }
         const int j = robot.jointIndex(name);
         if (j < 0)
           throw std::runtime_error(where + ": '" + name + "' is not a joint of robot " +
                                    robot.name);
         const RobotJoint& joint = robot.joints[j];
-        Column col;
         if (joint.active_index >= 0) {
           col.active = joint.active_index;
         } else if (joint.mimic_active >= 0) {
@@ -142,19 +149,32 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
 
 void writeJointStatesCsv(std::ostream& out, const RobotModel& robot,
                          const std::vector<std::vector<double>>& states) {
-  std::vector<int> joints;  // active and mimic joints, in model order
-  for (std::size_t j = 0; j < robot.joints.size(); ++j)
-    if (robot.joints[j].active_index >= 0 || robot.joints[j].mimic_active >= 0)
-      joints.push_back(int(j));
-  for (std::size_t k = 0; k < joints.size(); ++k)
-    out << (k ? "," : "") << robot.joints[joints[k]].name;
+  // Columns: every state value (a ball joint's four) and every mimic joint, in model order.
+  struct Column {
+    std::string name;
+    int active;  // the state value; -1: the mimic joint below
+    int mimic;
+  };
+  std::vector<Column> columns;
+  const std::vector<std::string> names = robot.activeJointNames();
+  for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+    const RobotJoint& joint = robot.joints[j];
+    for (int k = 0; k < joint.numVariables(); ++k)
+      columns.push_back({names[joint.active_index + k], joint.active_index + k, -1});
+    if (joint.active_index < 0 && joint.mimic_active >= 0)
+      columns.push_back({joint.name, -1, int(j)});
+  }
+  for (std::size_t k = 0; k < columns.size(); ++k) out << (k ? "," : "") << columns[k].name;
   out << "\n" << std::setprecision(17);
   for (const auto& q : states) {
-    for (std::size_t k = 0; k < joints.size(); ++k) {
-      const RobotJoint& j = robot.joints[joints[k]];
-      const double v = j.active_index >= 0
-                           ? q[j.active_index]
-                           : j.mimic_multiplier * q[j.mimic_active] + j.mimic_offset;
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      double v;
+      if (columns[k].active >= 0) {
+        v = q[columns[k].active];
+      } else {
+        const RobotJoint& j = robot.joints[columns[k].mimic];
+        v = j.mimic_multiplier * q[j.mimic_active] + j.mimic_offset;
+      }
       out << (k ? "," : "") << v;
     }
     out << "\n";

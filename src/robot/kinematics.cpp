@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dss/robot/multi_dof.h"
+
 namespace dss {
 namespace {
 
@@ -195,7 +197,9 @@ Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
       s.offset = joint.mimic_offset;
     }
     s.motion = Motion::kNone;
-    if (joint.isMoving()) {
+    if (joint.type == JointType::kBall) {
+      s.motion = Motion::kBall;
+    } else if (joint.isMoving()) {
       const bool rot = joint.type != JointType::kPrismatic;
       s.motion = rot ? Motion::kRotAxis : Motion::kTransAxis;
       for (int k = 0; k < 3; ++k) {
@@ -307,6 +311,24 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
       case Motion::kRotAxis: {
         const Eigen::Matrix3d M =
             Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix();
+        Pair x[6];
+        std::copy(c, c + 6, x);
+        for (int h = 0; h < 2; ++h)
+          for (int j = 0; j < 3; ++j)
+            c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+        break;
+      }
+      case Motion::kBall: {
+        // A quaternion of (nearly) zero or non-finite norm has no rotation: the pose becomes
+        // NaN, which every checker answers as invalid input.
+        const double* v = q + s.q_index;
+        Eigen::Quaterniond r(v[3], v[0], v[1], v[2]);
+        const double norm = r.norm();
+        Eigen::Matrix3d M;
+        if (norm >= kMinQuaternionNorm && std::isfinite(norm))
+          M = Eigen::Quaterniond(r.coeffs() / norm).toRotationMatrix();
+        else
+          M.setConstant(std::numeric_limits<double>::quiet_NaN());
         Pair x[6];
         std::copy(c, c + 6, x);
         for (int h = 0; h < 2; ++h)

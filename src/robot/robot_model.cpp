@@ -15,6 +15,8 @@ const char* toString(JointType t) {
       return "continuous";
     case JointType::kPrismatic:
       return "prismatic";
+    case JointType::kBall:
+      return "ball";
   }
   return "unknown";
 }
@@ -25,6 +27,26 @@ void RobotModel::rebuildIndex() {
   for (std::size_t i = 0; i < links.size(); ++i) link_index_[links[i].name] = static_cast<int>(i);
   for (std::size_t i = 0; i < joints.size(); ++i)
     joint_index_[joints[i].name] = static_cast<int>(i);
+}
+
+int RobotModel::variableIndex(const std::string& n) const {
+  const int j = jointIndex(n);
+  if (j >= 0)
+    return joints[j].active_index >= 0 && joints[j].type != JointType::kBall
+               ? joints[j].active_index
+               : -1;
+  // A ball joint's variable: its name and _x, _y, _z or _w.
+  if (n.size() < 3 || n[n.size() - 2] != '_') return -1;
+  const int b = jointIndex(n.substr(0, n.size() - 2));
+  if (b < 0 || joints[b].type != JointType::kBall || joints[b].active_index < 0) return -1;
+  const std::size_t k = std::string("xyzw").find(n.back());
+  return k == std::string::npos ? -1 : joints[b].active_index + int(k);
+}
+
+int RobotModel::multiDofIndex(const std::string& n) const {
+  for (std::size_t i = 0; i < multi_dof_joints.size(); ++i)
+    if (multi_dof_joints[i].name == n) return static_cast<int>(i);
+  return -1;
 }
 
 int RobotModel::linkIndex(const std::string& n) const {
@@ -53,7 +75,13 @@ int RobotModel::jointIndexOrThrow(const std::string& n) const {
 
 std::vector<std::string> RobotModel::activeJointNames() const {
   std::vector<std::string> out;
-  for (int j : active_joints) out.push_back(joints[j].name);
+  for (std::size_t a = 0; a < active_joints.size(); ++a) {
+    const RobotJoint& j = joints[active_joints[a]];
+    if (j.type == JointType::kBall)
+      out.push_back(j.name + "_" + "xyzw"[a - std::size_t(j.active_index)]);
+    else
+      out.push_back(j.name);
+  }
   return out;
 }
 
@@ -72,8 +100,12 @@ int RobotModel::rigidAncestor(int link) const {
 std::vector<double> RobotModel::defaultState() const {
   std::vector<double> q(active_joints.size(), 0.0);
   for (std::size_t i = 0; i < active_joints.size(); ++i) {
-    const JointLimits& l = joints[active_joints[i]].limits;
-    if (l.has_position_limits && (l.lower > 0.0 || l.upper < 0.0)) q[i] = 0.5 * (l.lower + l.upper);
+    const RobotJoint& j = joints[active_joints[i]];
+    const JointLimits& l = j.limits;
+    if (j.type == JointType::kBall) {  // the identity rotation
+      q[i] = i - std::size_t(j.active_index) == 3 ? 1.0 : 0.0;
+    } else if (l.has_position_limits && (l.lower > 0.0 || l.upper < 0.0))
+      q[i] = 0.5 * (l.lower + l.upper);
   }
   return q;
 }

@@ -198,7 +198,12 @@ class GroupResolver {
     const std::string where = srdf_.source + ": group '" + g.name + "'";
     std::set<int> joints;
     for (const auto& j : g.joints) {
-      if (virtual_joints_.count(j)) continue;
+      // A planar or floating joint (URDF or SRDF virtual): its one-variable parts.
+      if (const int md = model_.multiDofIndex(j); md >= 0) {
+        for (int part : model_.multi_dof_joints[md].joints) joints.insert(part);
+        continue;
+      }
+      if (virtual_joints_.count(j)) continue;  // a fixed virtual joint
       const int ji = model_.jointIndex(j);
       if (ji < 0)
         throw std::runtime_error(where + " names joint '" + j + "' that robot '" + model_.name +
@@ -228,7 +233,13 @@ class GroupResolver {
                                  c.tip_link + "'");
       joints.insert(chain.begin(), chain.end());
     }
-    return joints;
+    // A part of a multi-DOF joint (a link's parent joint, a chain through it) brings the
+    // others: the joint moves as a whole, as in MoveIt.
+    std::set<int> whole = joints;
+    for (int j : joints)
+      if (const int md = model_.joints[j].multi_dof; md >= 0)
+        for (int part : model_.multi_dof_joints[md].joints) whole.insert(part);
+    return whole;
   }
 
   const RobotModel& model_;
@@ -241,7 +252,8 @@ class GroupResolver {
 std::vector<int> activeIndices(const RobotModel& model, const std::set<int>& joints) {
   std::vector<int> out;
   for (int j : joints)  // std::set: increasing joint index = model order
-    if (model.joints[j].active_index >= 0) out.push_back(model.joints[j].active_index);
+    for (int k = 0; k < model.joints[j].numVariables(); ++k)
+      out.push_back(model.joints[j].active_index + k);
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -15,6 +15,7 @@
 
 #include "../common/urdf_tree_check.h"
 #include "dss/mesh/mesh.h"
+#include "dss/robot/multi_dof.h"
 #include "xml_util.h"
 
 namespace dss {
@@ -255,6 +256,7 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
     if (std::find(model.warnings.begin(), model.warnings.end(), w) == model.warnings.end())
       model.warnings.push_back(w);
   }
+  std::map<std::string, MultiDofType> multi_dof;  // planar and floating joints, by name
   std::map<std::string, int> joint_doc_index;
   for (std::size_t i = 0; i < scan.joint_order.size(); ++i)
     joint_doc_index[scan.joint_order[i]] = int(i);
@@ -308,11 +310,23 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
           j.type = JointType::kPrismatic;
           break;
         case urdf::Joint::FLOATING:
-        case urdf::Joint::PLANAR:
-          xml::fail(file, je,
-                    what + " is " + (uj->type == urdf::Joint::FLOATING ? "floating" : "planar") +
-                        ": floating and planar joints are not supported (place the robot's base "
-                        "with a fixed pose instead)");
+        case urdf::Joint::PLANAR: {
+          // A placeholder, expanded into one-variable joints below (multi_dof.h).
+          j.type = JointType::kFixed;
+          const bool planar = uj->type == urdf::Joint::PLANAR;
+          multi_dof[uj->name] = planar ? MultiDofType::kPlanar : MultiDofType::kFloating;
+          if (uj->mimic)
+            xml::fail(file, je,
+                      what + " is " + (planar ? "planar" : "floating") +
+                          " and cannot mimic another joint");
+          const Eigen::Vector3d a(uj->axis.x, uj->axis.y, uj->axis.z);
+          if (planar && je && je->FirstChildElement("axis") &&
+              !a.isApprox(Eigen::Vector3d::UnitZ(), 1e-12))
+            model.warnings.push_back(xml::where(file, je) + ": " + what +
+                                     " is planar: it moves in the x-y plane of its joint frame "
+                                     "(MoveIt's convention); its <axis> is not used");
+          break;
+        }
         default:
           xml::fail(file, je, what + " has an unknown type");
       }
@@ -397,6 +411,9 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
         xml::fail(file, je,
                   "joint '" + j.name + "' mimics a missing joint '" + cur->mimic.leader + "'");
       const RobotJoint& leader = model.joints[li];
+      if (multi_dof.count(leader.name))
+        xml::fail(file, je,
+                  "joint '" + j.name + "' mimics the multi-DOF joint '" + leader.name + "'");
       if (!leader.isMoving())
         xml::fail(file, je, "joint '" + j.name + "' mimics the fixed joint '" + leader.name + "'");
       if (leader.mimic.leader.empty()) break;
@@ -416,6 +433,14 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
     j.mimic_active = model.joints[model.jointIndex(chain.back()->mimic.leader)].active_index;
     j.mimic_multiplier = mult;
     j.mimic_offset = off;
+  }
+
+  // Planar and floating joints become chains of one-variable joints.
+  if (!multi_dof.empty()) {
+    std::vector<std::pair<int, MultiDofType>> placeholders;
+    for (const auto& [name, type] : multi_dof)
+      placeholders.push_back({model.jointIndex(name), type});
+    expandMultiDofJoints(model, placeholders, false, file);
   }
 
   // Collision elements, every one accounted for.

@@ -2,6 +2,7 @@
 #include "dss/scene/plan_request.h"
 
 #include <initializer_list>
+#include <set>
 
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
@@ -76,6 +77,21 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
   if (YamlReader::has(root, "num_planning_attempts"))
     r.num_planning_attempts = y.integer(root["num_planning_attempts"], "num_planning_attempts");
 
+  if (YamlReader::has(root, "workspace_parameters")) {
+    const YAML::Node ws = root["workspace_parameters"];
+    y.checkKeys(ws, "workspace_parameters", "moveit_msgs/WorkspaceParameters",
+                {"header", "min_corner", "max_corner"});
+    const Eigen::Vector3d lo =
+        y.vector3(y.require(ws, "min_corner", "workspace_parameters"), "min_corner");
+    const Eigen::Vector3d hi =
+        y.vector3(y.require(ws, "max_corner", "workspace_parameters"), "max_corner");
+    for (int k = 0; k < 3; ++k)
+      if (!(lo[k] <= hi[k]))
+        y.fail(ws, std::string("workspace_parameters: min_corner.") + "xyz"[k] +
+                       " is above max_corner." + "xyz"[k]);
+    r.workspace.emplace(lo, hi);
+  }
+
   const YAML::Node start = y.require(root, "start_state", "request");
   y.checkKeys(start, "start_state", "moveit_msgs/RobotState", kRobotStateKeys);
   if (YamlReader::has(start, "joint_state")) {
@@ -101,12 +117,25 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
     const YAML::Node md = start["multi_dof_joint_state"];
     y.checkKeys(md, "start_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
                 {"header", "joint_names", "transforms", "twist", "wrench"});
-    if (YamlReader::has(md, "transforms")) {
-      const YAML::Node tr = y.sequence(md["transforms"], "multi_dof_joint_state.transforms");
-      for (const auto& t : tr)
-        if (!y.transform(t, "multi_dof_joint_state transform")
-                 .isApprox(Eigen::Isometry3d::Identity(), 1e-12))
-          r.warnings.push_back(y.at(t) + ": non-identity multi-DOF start transform ignored");
+    const YAML::Node names =
+        YamlReader::has(md, "joint_names")
+            ? y.sequence(md["joint_names"], "multi_dof_joint_state.joint_names")
+            : YAML::Node(YAML::NodeType::Sequence);
+    const YAML::Node tr = YamlReader::has(md, "transforms")
+                              ? y.sequence(md["transforms"], "multi_dof_joint_state.transforms")
+                              : YAML::Node(YAML::NodeType::Sequence);
+    if (names.size() != tr.size())
+      y.fail(md, "start_state.multi_dof_joint_state: " + std::to_string(names.size()) +
+                     " joint names but " + std::to_string(tr.size()) + " transforms");
+    if (names.size() > max_values - r.start_names.size())
+      overLimit(names, "start_state: " + std::to_string(names.size()) + " multi-DOF joints (and " +
+                           std::to_string(r.start_names.size()) + " joints)");
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const std::string n = y.string(names[i], "multi_dof_joint_state.joint_names");
+      if (!seen.insert(n).second)
+        y.fail(names[i], "start_state: multi-DOF joint '" + n + "' given twice");
+      r.start_multi_dof.emplace_back(n, y.transform(tr[i], "multi_dof_joint_state transform"));
     }
   }
   if (YamlReader::has(start, "attached_collision_objects")) {

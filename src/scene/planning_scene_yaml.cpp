@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <initializer_list>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "dss/scene/scene_error.h"
@@ -167,19 +168,22 @@ class SceneYamlReader {
       const YAML::Node md = rs["multi_dof_joint_state"];
       y_.checkKeys(md, "robot_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
                    kMultiDofJointStateKeys);
-      if (YamlReader::has(md, "transforms")) {
-        const YAML::Node tr = y_.sequence(md["transforms"], "multi_dof_joint_state.transforms");
-        const YAML::Node names = YamlReader::optional(md, "joint_names");
-        for (std::size_t i = 0; i < tr.size(); ++i) {
-          const Eigen::Isometry3d X = y_.transform(tr[i], "multi_dof_joint_state.transforms");
-          if (!X.isApprox(Eigen::Isometry3d::Identity(), 1e-12)) {
-            std::string jn = (names.IsSequence() && i < names.size())
-                                 ? y_.string(names[i], "joint_names")
-                                 : std::to_string(i);
-            scene.warnings.push_back(y_.at(tr[i]) + ": multi-DOF joint '" + jn +
-                                     "' has a non-identity transform, not modelled");
-          }
-        }
+      const YAML::Node names =
+          YamlReader::has(md, "joint_names")
+              ? y_.sequence(md["joint_names"], "multi_dof_joint_state.joint_names")
+              : YAML::Node(YAML::NodeType::Sequence);
+      const YAML::Node tr = YamlReader::has(md, "transforms")
+                                ? y_.sequence(md["transforms"], "multi_dof_joint_state.transforms")
+                                : YAML::Node(YAML::NodeType::Sequence);
+      if (names.size() != tr.size())
+        y_.fail(md, "robot_state.multi_dof_joint_state: " + std::to_string(names.size()) +
+                        " joint names but " + std::to_string(tr.size()) + " transforms");
+      std::set<std::string> seen;
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string jn = y_.string(names[i], "joint_names");
+        if (!seen.insert(jn).second) y_.fail(names[i], "multi-DOF joint '" + jn + "' given twice");
+        scene.robot_multi_dof.emplace_back(jn,
+                                           y_.transform(tr[i], "multi_dof_joint_state.transforms"));
       }
     }
   }

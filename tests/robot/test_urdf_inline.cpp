@@ -364,9 +364,10 @@ BOOST_AUTO_TEST_CASE(bad_input_names_file_and_element) {
   BOOST_TEST(contains(e, "joint 'j' origin rpy"));
 
   e = errorOf(
-      R"(<robot name="x"><link name="a"/><link name="b"/><joint name="free" type="floating"><parent link="a"/><child link="b"/></joint></robot>)",
-      "floating.urdf");
-  BOOST_TEST(contains(e, "joint 'free' is floating"));
+      R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/><joint name="free" type="planar"><parent link="a"/><child link="b"/></joint><joint name="m" type="prismatic"><parent link="b"/><child link="c"/><limit lower="0" upper="1" effort="1" velocity="1"/><mimic joint="free"/></joint></robot>)",
+      "mimic_planar.urdf");
+  BOOST_TEST(contains(e, "mimic_planar.urdf"));
+  BOOST_TEST(contains(e, "joint 'm' mimics the multi-DOF joint 'free'"));
 
   e = errorOf(
       R"(<robot name="x"><link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint></robot>)",

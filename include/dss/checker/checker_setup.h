@@ -33,6 +33,12 @@ struct LoadedRobot {
 LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path,
                       const LoadOptions& options = {});
 
+/// The robot with the translation of its planar and floating joints bounded by the box
+/// [lo, hi] (setMultiDofTranslationBounds; e.g. a request's workspace_parameters); the robot
+/// itself when it has no such joint. Throws std::invalid_argument for a box that is not finite.
+LoadedRobot withWorkspace(const LoadedRobot& robot, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi);
+
 /// The group's active joints: the SRDF group when named, else the SRDF's first group when there
 /// is one, else every active joint. `group` receives the chosen name ("" for all).
 std::vector<int> resolveGroup(const LoadedRobot& robot, std::string* group);

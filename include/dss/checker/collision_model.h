@@ -131,7 +131,9 @@ class CollisionModel {
   }
   /// Every value finite, every group joint within its limits (continuous joints: any value),
   /// every joint outside the group at its held value or within its limits: the states the
-  /// model's bounds hold for.
+  /// model's bounds hold for; a ball joint's quaternion also needs a norm of at least
+  /// kMinQuaternionNorm (multi_dof.h), and a multi-DOF joint that the group does not move
+  /// (the Panda's floating virtual joint) must be at its held values.
   bool withinBounds(const double* q) const;
 
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
@@ -165,6 +167,7 @@ class CollisionModel {
   std::vector<std::string> warnings;
 
  private:
+  RobotModel foldedRobot() const;
   void buildSlots();
   void placeOnPoseLinks();
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
@@ -180,7 +183,10 @@ class CollisionModel {
   std::vector<double> held_;
   std::vector<int> held_active_;  ///< active joints outside the group
   std::vector<char> in_group_;    ///< per active joint: in the group
-  std::vector<char> moves_;       ///< per link: moves with the group
+  /// Per active joint: a value of a multi-DOF joint that the group does not move; the
+  /// kinematics fold the joint at its held values (foldedRobot), so states must hold it there.
+  std::vector<char> frozen_;
+  std::vector<char> moves_;  ///< per link: moves with the group
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;

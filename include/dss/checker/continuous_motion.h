@@ -1,5 +1,7 @@
 // A conservative continuous motion check: no collision between two states along the straight
-// joint-space motion can be missed.
+// joint-space motion can be missed. The quaternion of a ball joint (a floating joint's
+// rotation) moves by slerp along the shorter arc, as OMPL's SO(3) and SE(3) spaces
+// interpolate: a turn about a fixed axis at a constant rate, bounded like a revolute joint's.
 //
 // Over a sub-motion [t0, t1], every point p of a slot moves along a path p(t) with
 //   |p'|  <= V = sum over moving joints j above it of |dq_j| reach_j + sum of prismatic |dq_j|
@@ -69,6 +71,7 @@ class ContinuousMotionChecker {
   double min_fraction_;
   std::vector<std::vector<ChainTerm>> chains_;  ///< per slot: the joints that move it
   std::vector<Unit> units_;                     ///< every unit of the model, in sweep order
+  std::vector<int> balls_;                      ///< the first state value of each ball joint
   mutable std::atomic<std::uint64_t> sub_motions_{0}, unit_tests_{0};
 };
 

@@ -39,6 +39,9 @@ struct ChainTerm {
   int active = -1;  ///< the active joint whose value drives it (a mimic joint's leader); -1: none
   double multiplier = 1.0;  ///< of that value (a mimic joint's multiplier)
   bool prismatic = false;
+  /// A ball joint: `active` is the first of its four quaternion values; the motion turns by the
+  /// angle between the two quaternions (about a fixed axis: the motion is a slerp).
+  bool ball = false;
   double reach = 0.0;  ///< bound on the set's distance from the joint's origin
 };
 
@@ -48,8 +51,13 @@ struct ChainTerm {
 std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, double radius,
                                   const std::vector<double>& held, double* reach_at_stop = nullptr);
 
-/// Over the straight joint-space motion q0 -> q1 (active joint values): `length` bounds the
-/// path of every point of the set (V above), `turn` is the revolute angle above it (W).
+/// The rotation angle between two quaternions (x, y, z, w; not necessarily unit), rounded up:
+/// the angle a slerp along the shorter arc turns by. Infinity when one has no direction.
+double quaternionAngle(const double* a, const double* b);
+
+/// Over the straight joint-space motion q0 -> q1 (active joint values; a ball joint's
+/// quaternion moves by slerp along the shorter arc): `length` bounds the path of every point
+/// of the set (V above), `turn` is the revolute angle above it (W).
 struct MotionBound {
   double length = 0.0;
   double turn = 0.0;

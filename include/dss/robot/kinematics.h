@@ -57,7 +57,8 @@ class Kinematics {
     kTransX,
     kTransY,
     kTransZ,
-    kTransAxis
+    kTransAxis,
+    kBall  // four values from q_index: a quaternion (x, y, z, w), normalised
   };
   /// Two doubles in one SIMD register (SSE2, NEON): a 4x4 column-major pose is 8 of them.
   using Pair = double __attribute__((vector_size(16)));

@@ -2,10 +2,19 @@
 // carrying zero or more convex collision elements (primitives kept exact, meshes as hulls).
 //
 // Indices are dense and stable: links and joints are numbered in a depth-first order from the
-// root, children in document order, so a parent always comes before its children. The joint
-// values of a state are indexed by *active* joint index: the revolute, continuous and
-// prismatic joints that are not mimic joints, in that same depth-first order. Mimic joints
-// follow their leader (value = multiplier * leader + offset).
+// root, children in document order, so a parent always comes before its children. The values
+// of a state are indexed by *active* index: one per variable of the revolute, continuous,
+// prismatic and ball joints that are not mimic joints, in that same depth-first order (a ball
+// joint has four, every other moving joint one). Mimic joints follow their leader (value =
+// multiplier * leader + offset).
+//
+// Multi-DOF joints (URDF planar and floating joints, SRDF planar and floating virtual joints)
+// are expanded into chains of one-variable joints named as MoveIt names their variables,
+// joined by links without geometry (see multi_dof.h): a planar joint J becomes J/x, J/y
+// (prismatic along x and y of the joint frame) and J/theta (continuous about z); a floating
+// joint J becomes J/trans_x, J/trans_y, J/trans_z and the ball joint J/rot, whose variables are
+// J/rot_x, J/rot_y, J/rot_z, J/rot_w (a quaternion, normalised by the kinematics). Every other
+// part of the library sees ordinary joints.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -18,7 +27,9 @@
 
 namespace dss {
 
-enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
+/// kBall: free rotation about the joint origin, four variables (quaternion x, y, z, w); only
+/// made by the expansion of a floating joint.
+enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic, kBall };
 
 const char* toString(JointType t);
 
@@ -52,7 +63,24 @@ struct RobotJoint {
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;
 
+  /// The multi-DOF joint this joint is a part of (index into RobotModel::multi_dof_joints),
+  /// -1 for a joint of the robot description itself.
+  int multi_dof = -1;
+
   bool isMoving() const { return type != JointType::kFixed; }
+  /// Number of state values the joint owns (0 for fixed and mimic joints).
+  int numVariables() const { return active_index < 0 ? 0 : (type == JointType::kBall ? 4 : 1); }
+};
+
+enum class MultiDofType { kPlanar, kFloating };
+
+/// A planar or floating joint as the robot description names it, and the one-variable joints
+/// it was expanded into (planar: x, y, theta; floating: trans_x, trans_y, trans_z, rot).
+struct MultiDofJoint {
+  std::string name;
+  MultiDofType type = MultiDofType::kPlanar;
+  std::vector<int> joints;  ///< model joint indices, from the parent side
+  bool from_srdf = false;   ///< an SRDF virtual joint (else a URDF joint)
 };
 
 struct CollisionElement {
@@ -80,7 +108,9 @@ struct RobotModel {
   std::string source;  ///< the file it was read from (for messages)
   std::vector<RobotLink> links;
   std::vector<RobotJoint> joints;
-  std::vector<int> active_joints;  ///< joint index of each active joint, by active index
+  /// The joint that owns each state value, by active index (a ball joint appears four times).
+  std::vector<int> active_joints;
+  std::vector<MultiDofJoint> multi_dof_joints;
   int root_link = 0;
   /// Non-fatal findings of the loader (dropped collision elements in warning mode, mimic
   /// tags on fixed joints, ...), one line each.
@@ -93,8 +123,16 @@ struct RobotModel {
   int linkIndexOrThrow(const std::string& name) const;
   int jointIndexOrThrow(const std::string& name) const;
 
+  /// The number of values in a state (the variables of the active joints).
   std::size_t numActiveJoints() const { return active_joints.size(); }
+  /// The name of each state value, by active index: the joint's name, or for a ball joint
+  /// J/rot the variable names J/rot_x, J/rot_y, J/rot_z, J/rot_w.
   std::vector<std::string> activeJointNames() const;
+  /// The active index of a state value by its name (as activeJointNames gives it); -1 when
+  /// absent (fixed and mimic joints have none).
+  int variableIndex(const std::string& name) const;
+  /// -1 when absent.
+  int multiDofIndex(const std::string& name) const;
   std::size_t numCollisionElements() const;
   /// The nearest ancestor-or-self whose parent joint moves (the root when none): links with
   /// the same rigid ancestor never move relative to each other.

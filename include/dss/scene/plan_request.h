@@ -11,12 +11,16 @@
 // a ROS message would fail to deserialize with it; PlanRequestOptions::unknown_keys_are_warnings
 // turns it into a line in PlanRequest::warnings. A key given twice in one mapping is always an
 // error (yaml-cpp would keep one value silently). Fields of the message that a joint-space
-// problem does not use (workspace_parameters, path_constraints, planner_id, ...) are accepted
-// and not read. The start joints plus all goal joint constraints are bounded by
+// problem does not use (path_constraints, the scaling factors, ...) are accepted and not read.
+// The start state's multi-DOF joint transforms are kept by joint name (a planar or floating
+// joint's values, multi_dof.h), and workspace_parameters' corners bound such joints. The start
+// joints plus all goal joint constraints are bounded by
 // PlanRequestOptions::limits.max_request_joint_values, counted after YAML alias expansion.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -52,6 +56,10 @@ struct PlanRequest {
   std::string planner_id;
   std::vector<std::string> start_names;
   std::vector<double> start_positions;
+  /// start_state.multi_dof_joint_state: one transform per joint name, in file order.
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> start_multi_dof;
+  /// workspace_parameters' min_corner and max_corner, when given.
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> workspace;
   /// Any one of these goals satisfies the request (MoveIt semantics).
   std::vector<GoalConstraint> goals;
   double allowed_planning_time = 0.0;

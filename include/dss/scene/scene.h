@@ -31,6 +31,9 @@ struct Scene {
   AllowedCollisionMatrix allowed_collisions;
   /// Joint values saved with the scene (`robot_state.joint_state`), by joint name.
   std::map<std::string, double> robot_state;
+  /// Multi-DOF joint transforms saved with the scene (`robot_state.multi_dof_joint_state`),
+  /// in file order: the values of a robot's planar or floating joints (multi_dof.h).
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> robot_multi_dof;
   /// Frames the file itself places (MoveIt `fixed_frame_transforms`), world poses.
   FrameMap fixed_frames;
   /// Things read but not modelled (attached objects, an octomap, non-fixed URDF joints set
