@@ -32,8 +32,10 @@ void checkModel(const dss::RobotModel& m) {
       dss_fuzz::propertyFailed("joint " + joint.name + ": child does not point back");
   }
   for (std::size_t a = 0; a < m.active_joints.size(); ++a) {
+    // A ball joint (a floating joint's rotation) owns four consecutive values.
     const int j = m.active_joints[a];
-    if (j < 0 || j >= nj || m.joints[j].active_index != static_cast<int>(a))
+    if (j < 0 || j >= nj || m.joints[j].active_index > static_cast<int>(a) ||
+        static_cast<int>(a) >= m.joints[j].active_index + m.joints[j].numVariables())
       dss_fuzz::propertyFailed("active joint " + std::to_string(a) + " inconsistent");
   }
   for (const dss::RobotJoint& joint : m.joints)

@@ -65,7 +65,11 @@ nlohmann::json describe(const dss::Problem& p) {
     l["moves"] = s.moves;
     l["pose_link"] = r.links[s.pose_link].name;  // the link whose pose places it in a query
     l["bounding_radius"] = s.radius;
-    if (s.moves) l["reach_radius"] = s.reach_radius;
+    if (s.moves) {
+      l["reach_radius"] = s.reach_radius;
+      if (s.reach_half_W.any())
+        l["reach_box_half"] = {s.reach_half_W.x(), s.reach_half_W.y(), s.reach_half_W.z()};
+    }
     json els = json::array();
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
       const auto& ce = *m.elements()[e].source;

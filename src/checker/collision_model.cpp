@@ -175,21 +175,68 @@ void CollisionModel::placeOnPoseLinks() {
 
 void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
   const RobotModel& m = *robot_;
+  // The motion of a joint at the held state (fixed joints: none).
+  auto heldMotion = [&](int ji) {
+    const RobotJoint& j = m.joints[ji];
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    if (j.type == JointType::kBall) {
+      const double* v = held_.data() + j.active_index;
+      motion.linear() = Eigen::Quaterniond(v[3], v[0], v[1], v[2]).normalized().toRotationMatrix();
+      return motion;
+    }
+    const double v = kin_.jointValue(held_.data(), ji);
+    if (j.type == JointType::kPrismatic)
+      motion.translation() = v * j.axis;
+    else if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
+      motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+    return motion;
+  };
   for (Slot& s : slots_) {
     if (!s.moves) continue;
-    // The first joint from the root that moves with the group: its origin is fixed in the world
-    // (it turns about it) or slides along its axis by at most its travel.
-    const std::vector<ChainTerm> chain =
-        chainAbove(m, s.link, -1, s.center_L.norm() + s.radius, held_);
-    const ChainTerm* first = nullptr;
-    for (const ChainTerm& t : chain)
-      if (moves_[m.joints[t.joint].child_link] && !moves_[m.joints[t.joint].parent_link])
-        first = &t;
-    if (!first) continue;  // cannot happen: a moving link has a moving joint above it
-    const RobotJoint& j0 = m.joints[first->joint];
-    s.reach_center_W = X_WL[j0.parent_link] * j0.X_PJ.translation();
-    const double r = first->reach + prismaticTravel(m, j0, held_);
-    s.reach_radius = r * (1.0 + 1e-9) + 1e-9;
+    std::vector<int> path;  // the joints from the root down to the link
+    for (int l = s.link; m.links[l].parent_joint >= 0; l = m.links[l].parent_link)
+      path.push_back(m.links[l].parent_joint);
+    std::reverse(path.begin(), path.end());
+    // Joints that the group does not move stay at their held values. Prismatic group joints at
+    // the top of the path (a mobile base's x and y, a gantry) slide the rest of the chain
+    // without turning it: the origin below them ranges over a box (taken at the middle of each
+    // joint's range, its held value included). The first other group joint turns what is below
+    // it about its origin (or slides it by its travel), within the chain reach of that joint.
+    Eigen::Isometry3d X = X_WL[m.root_link];
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();
+    std::size_t k = 0;
+    for (; k < path.size(); ++k) {
+      const RobotJoint& j = m.joints[path[k]];
+      const int lead = j.active_index >= 0 ? j.active_index : j.mimic_active;
+      if (lead < 0 || !in_group_[lead]) {
+        X = X * j.X_PJ * heldMotion(path[k]);
+        continue;
+      }
+      if (j.type != JointType::kPrismatic || j.active_index < 0 || !j.limits.has_position_limits)
+        break;
+      const double h = held_[j.active_index];
+      const double lo = std::min(j.limits.lower, h), hi = std::max(j.limits.upper, h);
+      if (!std::isfinite(lo) || !std::isfinite(hi)) break;
+      X = X * j.X_PJ;
+      half += (X.linear() * j.axis).cwiseAbs() * (0.5 * (hi - lo));
+      X = X * Eigen::Translation3d(j.axis * (0.5 * (lo + hi)));
+    }
+    double r;
+    if (k == path.size()) {  // only sliding joints above the link
+      s.reach_center_W = X * s.center_L;
+      r = s.radius;
+    } else {
+      const RobotJoint& j0 = m.joints[path[k]];
+      s.reach_center_W = X * j0.X_PJ.translation();
+      const std::vector<ChainTerm> chain =
+          chainAbove(m, s.link, -1, s.center_L.norm() + s.radius, held_);
+      r = std::numeric_limits<double>::infinity();
+      for (const ChainTerm& t : chain)
+        if (t.joint == path[k]) r = t.reach + prismaticTravel(m, j0, held_);
+    }
+    // Rounding: a relative and an absolute margin on both parts.
+    s.reach_half_W = half * (1.0 + 1e-9) + Eigen::Vector3d::Constant(half.any() ? 1e-9 : 0.0);
+    s.reach_radius = r * (1.0 + 1e-9) + 1e-9 + 1e-9 * s.reach_center_W.norm();
   }
 }
 
@@ -229,7 +276,11 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       ++scene_pairs_before_;
       if (options.prune_obstacles) {
         const double r = slots_[s].reach_radius + options.prune_margin;
-        const double d2 = detail::sqDistPointAabb(slots_[s].reach_center_W, boxes[o]);
+        // The distance from the box of centres to the obstacle's box.
+        Aabb grown = boxes[o];
+        grown.lower -= slots_[s].reach_half_W;
+        grown.upper += slots_[s].reach_half_W;
+        const double d2 = detail::sqDistPointAabb(slots_[s].reach_center_W, grown);
         if (std::isfinite(r) && d2 > r * r) {
           // Pruned: the link never comes closer than this to the obstacle.
           pruned_gap_ =
@@ -277,14 +328,14 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
     slot.boxes = BoxSoa(slot_boxes);
     scene_pairs_ += slot.obstacles.size();
   }
-  // The clearance grid covers the reach balls of the links checked against the scene.
+  // The clearance grid covers the reach of the links checked against the scene.
   Aabb region;
   region.lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   region.upper = -region.lower;
   for (const Slot& slot : slots_)
     if (!slot.obstacles.empty() && std::isfinite(slot.reach_radius) &&
         slot.reach_center_W.allFinite()) {
-      const Eigen::Vector3d r = Eigen::Vector3d::Constant(slot.reach_radius);
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(slot.reach_radius) + slot.reach_half_W;
       region.lower = region.lower.cwiseMin(slot.reach_center_W - r);
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
     }

@@ -107,7 +107,7 @@ BOOST_AUTO_TEST_CASE(within_bounds_takes_any_finite_angle_of_a_continuous_joint)
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_mobile_base";
   const dss::LoadedRobot r =
       dss::loadRobot(dir + "/dss_mobile_base.urdf", dir + "/dss_mobile_base.srdf");
-  const int theta = r.model->joints[r.model->jointIndexOrThrow("base_theta")].active_index;
+  const int theta = r.model->variableIndex("base/theta");
   BOOST_REQUIRE(theta >= 0);
   BOOST_REQUIRE(r.model->joints[r.model->active_joints[theta]].type == dss::JointType::kContinuous);
   const std::vector<double> held = r.model->defaultState();
@@ -122,6 +122,29 @@ BOOST_AUTO_TEST_CASE(within_bounds_takes_any_finite_angle_of_a_continuous_joint)
     q[theta] = bad;
     BOOST_TEST(!m.withinBounds(q.data()), "angle " << bad);
   }
+}
+
+// A floating joint's quaternion: any direction and scale, but not (nearly) zero.
+BOOST_AUTO_TEST_CASE(within_bounds_refuses_a_quaternion_without_direction) {
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_free_flyer";
+  dss::LoadedRobot r = dss::loadRobot(dir + "/dss_free_flyer.urdf", dir + "/dss_free_flyer.srdf");
+  r = dss::withWorkspace(r, Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+  const int w = r.model->variableIndex("base/rot_w");
+  BOOST_REQUIRE(w == 6);
+  const std::vector<double> held = r.model->defaultState();
+  const dss::CollisionModel m(r.model, &*r.srdf, dss::Scene{}, {}, held);
+  std::vector<double> q = held;
+  BOOST_TEST(m.withinBounds(q.data()));
+  q[w] = 0.5;  // not unit: normalised by the kinematics
+  q[3] = 0.5;
+  BOOST_TEST(m.withinBounds(q.data()));
+  for (int k = 3; k < 7; ++k) q[k] = 0.0;
+  BOOST_TEST(!m.withinBounds(q.data()));
+  q[w] = 1e-7;
+  BOOST_TEST(!m.withinBounds(q.data()));
+  const dss::DssChecker c(std::make_shared<const dss::CollisionModel>(
+      r.model, &*r.srdf, dss::Scene{}, std::vector<int>{}, held));
+  BOOST_TEST((c.check(q.data()) == dss::StateVerdict::kInvalidInput));
 }
 
 BOOST_AUTO_TEST_CASE(checkers_refuse_invalid_input_and_count_it) {

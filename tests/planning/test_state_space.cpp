@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dss/planning/planning_problem.h"
+#include "dss/robot/urdf_loader.h"
 
 namespace ob = ompl::base;
 
@@ -44,8 +45,18 @@ BOOST_AUTO_TEST_CASE(arm_group_is_a_bounded_real_vector_space) {
 }
 
 BOOST_AUTO_TEST_CASE(continuous_joints_become_so2_parts) {
-  const std::string dir = kRobots + "/dss_mobile_base";
-  const auto r = dss::loadRobot(dir + "/dss_mobile_base.urdf", dir + "/dss_mobile_base.srdf");
+  // A turntable (continuous), a slide (prismatic) and a wrist (continuous).
+  const char* urdf = R"(<robot name="t"><link name="w"/>
+<link name="a"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+<link name="b"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+<link name="c"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+<joint name="turn" type="continuous"><parent link="w"/><child link="a"/><axis xyz="0 0 1"/></joint>
+<joint name="slide" type="prismatic"><parent link="a"/><child link="b"/><origin xyz="0.5 0 0"/>
+  <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
+<joint name="wrist" type="continuous"><parent link="b"/><child link="c"/><origin xyz="0.3 0 0"/><axis xyz="0 1 0"/></joint>
+</robot>)";
+  dss::LoadedRobot r;
+  r.model = std::make_shared<const dss::RobotModel>(dss::loadUrdfString(urdf, "t.urdf", "."));
   dss::Problem p = dss::makeProblem(r, dss::Scene{}, "", {});
   int continuous = 0;
   for (int a : p.map->groupActive())

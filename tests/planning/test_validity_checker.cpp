@@ -81,7 +81,7 @@ BOOST_AUTO_TEST_CASE(shelf_plan_is_valid_under_dss_and_fcl_hull) {
     invalid_dss += !dss_checker->isValid(s);
     invalid_fcl += !fcl_checker->isValid(s);
   }
-  BOOST_TEST(path.getStateCount() >= 50u);
+  BOOST_TEST(path.getStateCount() >= 20u);
   BOOST_TEST(invalid_dss == 0);
   BOOST_TEST(invalid_fcl == 0);
   // The straight line start -> goal passes through the shelf: the problem is not trivial.

@@ -98,8 +98,11 @@ class CollisionModel {
     double radius = 0.0;
     std::vector<int> obstacles;  ///< kept obstacles this slot is checked against
     BoxSoa boxes;                ///< their world boxes, in the same order
-    /// Reach ball in the world (moving slots): every pose of the link stays inside.
+    /// Reach in the world (moving slots): every pose of the link stays within reach_radius of
+    /// a point of the box reach_center_W +- reach_half_W. The box is flat (a ball) unless
+    /// prismatic group joints slide the chain without turning it (a mobile base's x and y).
     Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
+    Eigen::Vector3d reach_half_W = Eigen::Vector3d::Zero();
     double reach_radius = 0.0;
   };
   struct SelfPair {

@@ -1,0 +1,74 @@
+// dss_plan on a planar and a floating base, headless, as a user runs it: our mobile base
+// through its aisle (discrete and continuous motions, DSS and fcl-hull) and our free flyer
+// through its window; the solution path's CSV names the multi-DOF variables and reads back.
+#include <boost/test/unit_test.hpp>
+#include <fstream>
+#include <sstream>
+
+#include "support/run_tool.h"
+#include "support/temp_files.h"
+
+namespace {
+
+const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots";
+
+std::vector<std::string> problem(const std::string& robot, const std::string& scene) {
+  const std::string d = kRobots + "/" + robot;
+  return {"--robot",   d + "/" + robot + ".urdf",
+          "--srdf",    d + "/" + robot + ".srdf",
+          "--scene",   d + "/scenes/" + scene + ".yaml",
+          "--request", d + "/scenes/" + scene + "_request.yaml",
+          "--seed",    "1",
+          "--time",    "30"};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(mobile_base_plans)
+
+BOOST_AUTO_TEST_CASE(the_mobile_base_plans_through_its_aisle) {
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, {"--motion", "continuous"}, {"--checker", "fcl-hull"}}) {
+    std::vector<std::string> args = problem("dss_mobile_base", "aisle");
+    args.insert(args.end(), extra.begin(), extra.end());
+    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+    BOOST_TEST(r.exit_code == 0, r.err);
+    BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path) {
+  const std::string csv = (dss_test::scratchDir("tools") / "flyer_path.csv").string();
+  std::vector<std::string> args = problem("dss_free_flyer", "window");
+  args.insert(args.end(), {"--path", csv});
+  const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  BOOST_TEST(header ==
+             "base/trans_x,base/trans_y,base/trans_z,base/rot_x,base/rot_y,base/rot_z,"
+             "base/rot_w");
+  // Every state of the path is valid again for dss_check, read from the CSV.
+  const std::string d = kRobots + "/dss_free_flyer";
+  const dss_test::ToolRun c = dss_test::runTool(
+      "dss_check", {"--robot", d + "/dss_free_flyer.urdf", "--srdf", d + "/dss_free_flyer.srdf",
+                    "--scene", d + "/scenes/window.yaml", "--workspace", "-3,-2,0,3,2,3",
+                    "--states", csv, "--checker", "dss,fcl-hull"});
+  BOOST_TEST(c.exit_code == 0, c.err);
+  BOOST_TEST(c.out.find('0') == std::string::npos, c.out);
+  BOOST_TEST(c.out.find('1') != std::string::npos, c.out);
+}
+
+BOOST_AUTO_TEST_CASE(a_floating_group_without_bounds_is_refused_clearly) {
+  // No request: no workspace_parameters, and no --workspace.
+  const std::string d = kRobots + "/dss_free_flyer";
+  const dss_test::ToolRun c =
+      dss_test::runTool("dss_check", {"--robot", d + "/dss_free_flyer.urdf", "--srdf",
+                                      d + "/dss_free_flyer.srdf", "--random", "10"});
+  BOOST_TEST(c.exit_code == 1);
+  BOOST_TEST(c.err.find("has no finite bounds for base/trans_x") != std::string::npos, c.err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
