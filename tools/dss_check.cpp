@@ -99,6 +99,18 @@ nlohmann::json describe(const dss::Problem& p) {
     joints.push_back(x);
   }
   j["joints"] = joints;
+  json multi = json::array();  // planar and floating joints and the joints they became
+  for (const auto& md : r.multi_dof_joints) {
+    json x;
+    x["name"] = md.name;
+    x["type"] = md.type == dss::MultiDofType::kPlanar ? "planar" : "floating";
+    x["from"] = md.from_srdf ? "srdf virtual joint" : "urdf joint";
+    json parts = json::array();
+    for (int ji : md.joints) parts.push_back(r.joints[ji].name);
+    x["joints"] = parts;
+    multi.push_back(x);
+  }
+  j["multi_dof_joints"] = multi;
   json obs = json::array();
   for (const auto& o : m.scene().obstacles)
     obs.push_back({{"name", o.name}, {"shape", dss::describeShape(o.shape)}});
