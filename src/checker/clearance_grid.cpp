@@ -49,4 +49,43 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
       }
 }
 
+void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radius,
+                                    std::size_t max_bytes) {
+  words_ = 0;
+  candidates_.clear();
+  if (bound_.empty() || boxes.empty() || !(radius >= 0.0) || !std::isfinite(radius)) return;
+  for (const Aabb& b : boxes)
+    if (!b.lower.allFinite() || !b.upper.allFinite()) return;
+  const std::size_t words = (boxes.size() + 63) / 64;
+  if (bound_.size() > max_bytes / (8 * words)) return;
+  candidates_.assign(bound_.size() * words, 0);
+  // A ball centred in a voxel lies within half the diagonal plus the radius of the centre; a
+  // margin covers the rounding of the centre and of voxel(), which may pick a neighbour for a
+  // point within rounding of a face.
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * size_;
+  const double reach = radius + half_diagonal + 1e-6 * size_;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const Aabb& b = boxes[k];
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      const double l = std::floor((b.lower[a] - reach - origin_[a]) * inv_size_) - 1;
+      const double h = std::ceil((b.upper[a] + reach - origin_[a]) * inv_size_) + 1;
+      lo[a] = static_cast<int>(std::max(0.0, std::min(l, double(count_[a]))));
+      hi[a] = static_cast<int>(std::max(0.0, std::min(h, double(count_[a]))));
+    }
+    const std::uint64_t bit = std::uint64_t(1) << (k % 64);
+    for (int z = lo[2]; z < hi[2]; ++z)
+      for (int y = lo[1]; y < hi[1]; ++y)
+        for (int x = lo[0]; x < hi[0]; ++x) {
+          const Eigen::Vector3d c = origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+          const double margin = 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + reach);
+          const double r = reach + margin;
+          if (!(detail::sqDistPointAabb(c, b) <= r * r)) continue;
+          candidates_[(z * stride_z_ + y * stride_y_ + x) * words + k / 64] |= bit;
+        }
+  }
+  words_ = words;
+  candidate_radius_ = radius;
+}
+
 }  // namespace dss

@@ -340,6 +340,23 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
     }
   grid_ = ClearanceGrid(region, boxes_);
+  // Candidate lists pay where many obstacles are kept (a mobile base among shelves): a link
+  // sphere the grid cannot clear is then tested against the few obstacles near it only.
+  constexpr std::size_t kMinCandidateObstacles = 16;
+  constexpr std::size_t kMaxCandidateBytes = std::size_t(16) << 20;
+  if (boxes_.size() >= kMinCandidateObstacles) {
+    double radius = 0.0;
+    for (const Slot& slot : slots_)
+      if (!slot.obstacles.empty()) radius = std::max(radius, slot.radius);
+    // Room for a small scene padding on top of the largest link sphere.
+    grid_.buildCandidates(boxes_, radius + 0.01, kMaxCandidateBytes);
+  }
+  if (const std::size_t words = grid_.candidateWords())
+    for (Slot& slot : slots_) {
+      if (slot.obstacles.empty()) continue;
+      slot.obstacle_bits.assign(words, 0);
+      for (int o : slot.obstacles) slot.obstacle_bits[o / 64] |= std::uint64_t(1) << (o % 64);
+    }
 }
 
 void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {

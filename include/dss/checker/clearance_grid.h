@@ -7,7 +7,8 @@
 // obstacle and its per-obstacle tests are skipped (one lookup instead of one sphere-box test
 // per obstacle: most link spheres of a free state are settled this way). A centre outside the
 // grid, or NaN, gets no bound, and the per-obstacle tests run as before: the grid never
-// changes an answer.
+// changes an answer. In scenes with many obstacles it also lists, per voxel, the obstacles a
+// link sphere centred there can touch, so that the per-obstacle tests run over those alone.
 #pragma once
 
 #include <cstddef>
@@ -44,6 +45,19 @@ class ClearanceGrid {
     const std::uint8_t* v = voxel(c);
     return v ? *v * kQuantum : 0.0;
   }
+
+  /// Candidate lists: for every voxel, the boxes that a ball of radius up to `radius` centred
+  /// anywhere in the voxel can touch, one bit per box (index into `boxes`). Built only when
+  /// they fit in `max_bytes`; without them candidates() is null.
+  void buildCandidates(const std::vector<Aabb>& boxes, double radius, std::size_t max_bytes);
+  /// The candidate bits of c's voxel (candidateWords() words), or null when c is outside the
+  /// grid (or NaN), when no lists were built, or when r exceeds the radius they were built for.
+  const std::uint64_t* candidates(const Eigen::Vector3d& c, double r) const {
+    if (words_ == 0 || !(r <= candidate_radius_)) return nullptr;
+    const std::uint8_t* v = voxel(c);
+    return v ? &candidates_[static_cast<std::size_t>(v - bound_.data()) * words_] : nullptr;
+  }
+  std::size_t candidateWords() const { return words_; }
 
   bool empty() const { return bound_.empty(); }
   std::size_t voxels() const { return bound_.size(); }
@@ -82,6 +96,9 @@ class ClearanceGrid {
   Eigen::Vector3d below_ = Eigen::Vector3d::Zero();  // origin_ minus one voxel per axis
   std::size_t stride_y_ = 0, stride_z_ = 0;
   std::vector<std::uint8_t> bound_;
+  std::size_t words_ = 0;  // candidate words per voxel (0: none built)
+  double candidate_radius_ = 0.0;
+  std::vector<std::uint64_t> candidates_;
 };
 
 }  // namespace dss

@@ -98,6 +98,9 @@ class CollisionModel {
     double radius = 0.0;
     std::vector<int> obstacles;  ///< kept obstacles this slot is checked against
     BoxSoa boxes;                ///< their world boxes, in the same order
+    /// The same obstacles as bits (kept obstacle indices), when the clearance grid has
+    /// candidate lists (ClearanceGrid::candidates); empty otherwise.
+    std::vector<std::uint64_t> obstacle_bits;
     /// Reach in the world (moving slots): every pose of the link stays within reach_radius of
     /// a point of the box reach_center_W +- reach_half_W. The box is flat (a ball) unless
     /// prismatic group joints slide the chain without turning it (a mobile base's x and y).

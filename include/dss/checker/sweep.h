@@ -115,37 +115,53 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid.clear(c, r)) continue;
+    // One obstacle that the slot's sphere reaches: its elements through the stages.
+    auto obstacle = [&](int o) {
+      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+        const Element& el = elements[e];
+        if (s.num_elements > 1) {
+          const double re = el.radius + scene_padding;
+          if (detail::sqDistPointAabb(X * elementCenter(el), boxes[o]) > re * re) continue;
+        }
+        Eigen::Isometry3d X_prod;
+        const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
+        if (opt.obb_stage) {
+          const Obb& ob = obbs[o];
+          if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
+                       scene_padding))
+            continue;
+        }
+        if (opt.inner_balls && el.num_inner > 0) {
+          const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
+          if (half.x() >= 0.0) {
+            const Obb& ob = obbs[o];
+            for (int b = 0; b < el.num_inner; ++b)
+              if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c,
+                                 half, scene_padding))
+                return true;
+          }
+        }
+        if (scene(e, X_WS, o)) return true;
+      }
+      return false;
+    };
+    // The grid's candidates for the sphere's voxel (obstacles it can reach from there) that
+    // the slot is checked against; else every obstacle of the slot, two boxes at a time.
+    if (const std::uint64_t* cand = s.obstacle_bits.empty() ? nullptr : grid.candidates(c, r)) {
+      const std::size_t words = s.obstacle_bits.size();
+      for (std::size_t w = 0; w < words; ++w)
+        for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
+          const int o = static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
+          if (detail::sqDistPointAabb(c, boxes[o]) > r * r) continue;
+          if (obstacle(o)) return true;
+        }
+      continue;
+    }
     for (std::size_t begin = 0; begin < nb; begin += 64) {
       const std::size_t n = std::min<std::size_t>(64, nb - begin);
       for (std::uint64_t hits = s.boxes.hits(begin, n, c, r * r); hits; hits &= hits - 1) {
         const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
-        const int o = s.obstacles[i];
-        for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-          const Element& el = elements[e];
-          if (s.num_elements > 1) {
-            const double re = el.radius + scene_padding;
-            if (detail::sqDistPointAabb(X * elementCenter(el), boxes[o]) > re * re) continue;
-          }
-          Eigen::Isometry3d X_prod;
-          const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
-          if (opt.obb_stage) {
-            const Obb& ob = obbs[o];
-            if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
-                         scene_padding))
-              continue;
-          }
-          if (opt.inner_balls && el.num_inner > 0) {
-            const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
-            if (half.x() >= 0.0) {
-              const Obb& ob = obbs[o];
-              for (int b = 0; b < el.num_inner; ++b)
-                if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c,
-                                   half, scene_padding))
-                  return true;
-            }
-          }
-          if (scene(e, X_WS, o)) return true;
-        }
+        if (obstacle(s.obstacles[i])) return true;
       }
     }
   }

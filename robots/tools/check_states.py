@@ -3,9 +3,9 @@
 floating virtual joint (stdlib + PyYAML; independent of the dss library).
 
 Usage (from the repository root):
-  python3 robots/dss_mobile_base/scenes/check_states.py URDF SRDF SCENE REQUEST [MIN_GAP]
+  python3 robots/tools/check_states.py URDF SRDF SCENE REQUEST [MIN_GAP]
 e.g.
-  python3 robots/dss_mobile_base/scenes/check_states.py robots/dss_mobile_base/dss_mobile_base.urdf \
+  python3 robots/tools/check_states.py robots/dss_mobile_base/dss_mobile_base.urdf \
       robots/dss_mobile_base/dss_mobile_base.srdf robots/dss_mobile_base/scenes/aisle.yaml \
       robots/dss_mobile_base/scenes/aisle_request.yaml
 
