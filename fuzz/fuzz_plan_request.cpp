@@ -2,7 +2,9 @@
 // joints checked against a fixed set of movable and held joint names
 // (dss::checkRequestJoints). Any bytes must end in a PlanRequest or a std::exception naming
 // the source (key errors are tried strict and as warnings, by the last input byte); a request
-// that loads must have one position per start joint and only finite values.
+// that loads must have one position per start joint and only finite values; its multi-DOF start
+// transforms are finite rigid transforms with distinct names, its workspace corners finite and
+// ordered.
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -31,6 +33,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!std::isfinite(c.position) || !std::isfinite(c.tolerance_above) ||
           !std::isfinite(c.tolerance_below) || !std::isfinite(c.weight))
         dss_fuzz::propertyFailed("a non-finite goal constraint value");
+  std::set<std::string> multi;
+  for (const auto& [name, X] : request.start_multi_dof) {
+    if (!multi.insert(name).second) dss_fuzz::propertyFailed("a multi-DOF joint given twice");
+    if (!X.matrix().allFinite() ||
+        !(X.linear().transpose() * X.linear()).isApprox(Eigen::Matrix3d::Identity(), 1e-9))
+      dss_fuzz::propertyFailed("a multi-DOF start transform that is not a finite rigid motion");
+  }
+  if (request.workspace) {
+    const auto& [lo, hi] = *request.workspace;
+    if (!lo.allFinite() || !hi.allFinite() || !(lo.array() <= hi.array()).all())
+      dss_fuzz::propertyFailed("workspace corners not finite and ordered");
+  }
   (void)request.startState();
   static const std::set<std::string> movable = {"joint1", "joint2", "joint3", "shoulder_pan"};
   static const std::set<std::string> held = {"finger_joint", "gripper"};

@@ -40,6 +40,11 @@ inline void checkScene(dss::Scene& scene) {
     if (o.frame_resolved && !o.X_WO.matrix().allFinite())
       propertyFailed("obstacle " + o.name + ": non-finite world pose");
   }
+  std::set<std::string> multi;  // robot_state.multi_dof_joint_state
+  for (const auto& [name, X] : scene.robot_multi_dof) {
+    if (!multi.insert(name).second) propertyFailed("multi-DOF joint '" + name + "' repeated");
+    if (!X.matrix().allFinite()) propertyFailed("multi-DOF joint " + name + ": non-finite pose");
+  }
   dss::resolveFrames(scene, {}, /*require_all=*/false);
   for (const dss::Obstacle& o : scene.obstacles) {
     if (!o.frame_resolved) continue;
