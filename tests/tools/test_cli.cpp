@@ -395,8 +395,9 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_plan", {"--simplify=1"}, "--simplify takes no value");
   checkToolUsageError("dss_plan", {"--bogus"}, "unknown option --bogus");
   checkToolUsageError("dss_plan", {"extra"}, "unexpected argument 'extra'");
-  checkToolUsageError("dss_plan", {"--workspace", "0,0,0,1,1"},
-                      "--workspace: expected 6 finite numbers separated by commas, got '0,0,0,1,1'");
+  checkToolUsageError(
+      "dss_plan", {"--workspace", "0,0,0,1,1"},
+      "--workspace: expected 6 finite numbers separated by commas, got '0,0,0,1,1'");
   checkToolUsageError("dss_check", {"--workspace", "0,0,0,1,1,nan"}, "--workspace: expected 6");
   checkToolUsageError("dss_check", {"--workspace", "0,0,0,1,1,1,"}, "--workspace: expected 6");
   BOOST_CHECK_EQUAL(
