@@ -82,14 +82,7 @@ RobotModel CollisionModel::foldedRobot() const {
   RobotModel folded = *robot_;
   for (RobotJoint& j : folded.joints) {
     if (j.active_index < 0 || !frozen_[j.active_index]) continue;
-    const double* v = held_.data() + j.active_index;
-    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-    if (j.type == JointType::kPrismatic)
-      motion.translation() = v[0] * j.axis;
-    else if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
-      motion.linear() = Eigen::AngleAxisd(v[0], j.axis).toRotationMatrix();
-    else if (j.type == JointType::kBall)
-      motion.linear() = Eigen::Quaterniond(v[3], v[0], v[1], v[2]).normalized().toRotationMatrix();
+    const Eigen::Isometry3d motion = jointMotion(j, held_.data() + j.active_index);
     // The identity stays exactly the identity (no rounding from the products).
     if (!motion.matrix().isIdentity(0.0)) j.X_PJ = j.X_PJ * motion;
     j.type = JointType::kFixed;
@@ -175,21 +168,11 @@ void CollisionModel::placeOnPoseLinks() {
 
 void CollisionModel::computeReach(const std::vector<Eigen::Isometry3d>& X_WL) {
   const RobotModel& m = *robot_;
-  // The motion of a joint at the held state (fixed joints: none).
+  // The motion of a joint at the held state (mimic joints through their leader).
   auto heldMotion = [&](int ji) {
     const RobotJoint& j = m.joints[ji];
-    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-    if (j.type == JointType::kBall) {
-      const double* v = held_.data() + j.active_index;
-      motion.linear() = Eigen::Quaterniond(v[3], v[0], v[1], v[2]).normalized().toRotationMatrix();
-      return motion;
-    }
     const double v = kin_.jointValue(held_.data(), ji);
-    if (j.type == JointType::kPrismatic)
-      motion.translation() = v * j.axis;
-    else if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
-      motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
-    return motion;
+    return jointMotion(j, j.type == JointType::kBall ? held_.data() + j.active_index : &v);
   };
   for (Slot& s : slots_) {
     if (!s.moves) continue;

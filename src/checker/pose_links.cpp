@@ -17,15 +17,8 @@ PoseLinks poseLinks(const RobotModel& m, const Kinematics& kin, const std::vecto
     const int lead = j.active_index >= 0 ? j.active_index : j.mimic_active;
     if (lead >= 0 && in_group[lead]) continue;  // moves with the group: a pose link itself
     const double v = kin.jointValue(held.data(), link.parent_joint);
-    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-    if (j.type == JointType::kRevolute || j.type == JointType::kContinuous)
-      motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
-    else if (j.type == JointType::kPrismatic)
-      motion.translation() = v * j.axis;
-    else if (j.type == JointType::kBall) {
-      const double* h = held.data() + j.active_index;
-      motion.linear() = Eigen::Quaterniond(h[3], h[0], h[1], h[2]).normalized().toRotationMatrix();
-    }
+    const Eigen::Isometry3d motion =
+        jointMotion(j, j.type == JointType::kBall ? held.data() + j.active_index : &v);
     if (!motion.matrix().allFinite()) continue;
     p.pose_of[l] = p.pose_of[link.parent_link];
     p.X_PL[l] = p.X_PL[link.parent_link] * j.X_PJ * motion;

@@ -157,21 +157,18 @@ GroupStateMap::GroupStateMap(std::shared_ptr<const RobotModel> robot, std::vecto
           component_[i] = comp++;
           const RobotJoint& j = m.joints[m.active_joints[group_[i]]];
           const std::string name = m.multi_dof_joints[j.multi_dof].name;
-          if (kind_[i] == Kind::kSE2) {
-            auto se2 = std::make_shared<ob::SE2StateSpace>();
-            ob::RealVectorBounds b(2);
-            for (int k = 0; k < 2; ++k) b.setLow(k, lo_[i + k]), b.setHigh(k, hi_[i + k]);
-            se2->setBounds(b);
-            se2->setName(name);
-            compound->addSubspace(se2, 1.0);
-          } else {
-            auto se3 = std::make_shared<ob::SE3StateSpace>();
-            ob::RealVectorBounds b(3);
-            for (int k = 0; k < 3; ++k) b.setLow(k, lo_[i + k]), b.setHigh(k, hi_[i + k]);
-            se3->setBounds(b);
-            se3->setName(name);
-            compound->addSubspace(se3, 1.0);
-          }
+          // The translation's bounds are the first 2 (SE(2)) or 3 (SE(3)) values'.
+          auto add = [&](auto space, int dims) {
+            ob::RealVectorBounds b(dims);
+            for (int k = 0; k < dims; ++k) b.setLow(k, lo_[i + k]), b.setHigh(k, hi_[i + k]);
+            space->setBounds(b);
+            space->setName(name);
+            compound->addSubspace(space, 1.0);
+          };
+          if (kind_[i] == Kind::kSE2)
+            add(std::make_shared<ob::SE2StateSpace>(), 2);
+          else
+            add(std::make_shared<ob::SE3StateSpace>(), 3);
           break;
         }
       }

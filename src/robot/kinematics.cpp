@@ -294,6 +294,14 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
         c[2 * cb + h] = cv * y - sv * x;
       }
     };
+    // A general rotation M of the joint frame: column j becomes sum_i M(i, j) column i.
+    auto turn = [&c](const Eigen::Matrix3d& M) {
+      Pair x[6];
+      std::copy(c, c + 6, x);
+      for (int h = 0; h < 2; ++h)
+        for (int j = 0; j < 3; ++j)
+          c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+    };
     // Translation along column k: p += d c_k.
     auto translate = [&c](int k, double d) { c[6] += d * c[2 * k], c[7] += d * c[2 * k + 1]; };
     switch (s.motion) {
@@ -308,16 +316,9 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
       case Motion::kRotZ:
         rotate(0, 1, sn[s.trig - block_begin], cs[s.trig - block_begin]);
         break;
-      case Motion::kRotAxis: {
-        const Eigen::Matrix3d M =
-            Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix();
-        Pair x[6];
-        std::copy(c, c + 6, x);
-        for (int h = 0; h < 2; ++h)
-          for (int j = 0; j < 3; ++j)
-            c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+      case Motion::kRotAxis:
+        turn(Eigen::AngleAxisd(s.multiplier * q[s.q_index] + s.offset, s.axis).toRotationMatrix());
         break;
-      }
       case Motion::kBall: {
         // A quaternion of (nearly) zero or non-finite norm has no rotation: the pose becomes
         // NaN, which every checker answers as invalid input.
@@ -329,11 +330,7 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
           M = Eigen::Quaterniond(r.coeffs() / norm).toRotationMatrix();
         else
           M.setConstant(std::numeric_limits<double>::quiet_NaN());
-        Pair x[6];
-        std::copy(c, c + 6, x);
-        for (int h = 0; h < 2; ++h)
-          for (int j = 0; j < 3; ++j)
-            c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+        turn(M);
         break;
       }
       case Motion::kTransX:

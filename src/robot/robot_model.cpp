@@ -21,6 +21,25 @@ const char* toString(JointType t) {
   return "unknown";
 }
 
+Eigen::Isometry3d jointMotion(const RobotJoint& j, const double* v) {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  switch (j.type) {
+    case JointType::kFixed:
+      break;
+    case JointType::kRevolute:
+    case JointType::kContinuous:
+      motion.linear() = Eigen::AngleAxisd(v[0], j.axis).toRotationMatrix();
+      break;
+    case JointType::kPrismatic:
+      motion.translation() = v[0] * j.axis;
+      break;
+    case JointType::kBall:
+      motion.linear() = Eigen::Quaterniond(v[3], v[0], v[1], v[2]).normalized().toRotationMatrix();
+      break;
+  }
+  return motion;
+}
+
 void RobotModel::rebuildIndex() {
   link_index_.clear();
   joint_index_.clear();

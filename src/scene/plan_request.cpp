@@ -113,31 +113,15 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
           y.number(pos[i], "start_state position of '" + r.start_names.back() + "'"));
     }
   }
-  if (YamlReader::has(start, "multi_dof_joint_state")) {
-    const YAML::Node md = start["multi_dof_joint_state"];
-    y.checkKeys(md, "start_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
-                {"header", "joint_names", "transforms", "twist", "wrench"});
-    const YAML::Node names =
-        YamlReader::has(md, "joint_names")
-            ? y.sequence(md["joint_names"], "multi_dof_joint_state.joint_names")
-            : YAML::Node(YAML::NodeType::Sequence);
-    const YAML::Node tr = YamlReader::has(md, "transforms")
-                              ? y.sequence(md["transforms"], "multi_dof_joint_state.transforms")
-                              : YAML::Node(YAML::NodeType::Sequence);
-    if (names.size() != tr.size())
-      y.fail(md, "start_state.multi_dof_joint_state: " + std::to_string(names.size()) +
-                     " joint names but " + std::to_string(tr.size()) + " transforms");
-    if (names.size() > max_values - r.start_names.size())
-      overLimit(names, "start_state: " + std::to_string(names.size()) + " multi-DOF joints (and " +
-                           std::to_string(r.start_names.size()) + " joints)");
-    std::set<std::string> seen;
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const std::string n = y.string(names[i], "multi_dof_joint_state.joint_names");
-      if (!seen.insert(n).second)
-        y.fail(names[i], "start_state: multi-DOF joint '" + n + "' given twice");
-      r.start_multi_dof.emplace_back(n, y.transform(tr[i], "multi_dof_joint_state transform"));
-    }
-  }
+  if (YamlReader::has(start, "multi_dof_joint_state"))
+    r.start_multi_dof =
+        y.multiDofJointState(start["multi_dof_joint_state"], "start_state.multi_dof_joint_state",
+                             max_values - r.start_names.size(), [&](std::size_t n) {
+                               return scene_detail::overLimit(
+                                   "start_state: " + std::to_string(n) + " multi-DOF joints (and " +
+                                       std::to_string(r.start_names.size()) + " joints)",
+                                   max_values, "max_request_joint_values", "PlanRequestOptions");
+                             });
   if (YamlReader::has(start, "attached_collision_objects")) {
     const YAML::Node att = start["attached_collision_objects"];
     if (att.IsSequence() && att.size() > 0)

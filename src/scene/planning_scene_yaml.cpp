@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -46,8 +47,6 @@ constexpr std::initializer_list<const char*> kRobotStateKeys = {
     "joint_state", "multi_dof_joint_state", "attached_collision_objects", "is_diff"};
 constexpr std::initializer_list<const char*> kJointStateKeys = {"header", "name", "position",
                                                                 "velocity", "effort"};
-constexpr std::initializer_list<const char*> kMultiDofJointStateKeys = {
-    "header", "joint_names", "transforms", "twist", "wrench"};
 constexpr std::initializer_list<const char*> kCollisionObjectKeys = {
     "header",          "pose",           "id",         "type",   "primitives",
     "primitive_poses", "meshes",         "mesh_poses", "planes", "plane_poses",
@@ -164,28 +163,10 @@ class SceneYamlReader {
         }
       }
     }
-    if (YamlReader::has(rs, "multi_dof_joint_state")) {
-      const YAML::Node md = rs["multi_dof_joint_state"];
-      y_.checkKeys(md, "robot_state.multi_dof_joint_state", "sensor_msgs/MultiDOFJointState",
-                   kMultiDofJointStateKeys);
-      const YAML::Node names =
-          YamlReader::has(md, "joint_names")
-              ? y_.sequence(md["joint_names"], "multi_dof_joint_state.joint_names")
-              : YAML::Node(YAML::NodeType::Sequence);
-      const YAML::Node tr = YamlReader::has(md, "transforms")
-                                ? y_.sequence(md["transforms"], "multi_dof_joint_state.transforms")
-                                : YAML::Node(YAML::NodeType::Sequence);
-      if (names.size() != tr.size())
-        y_.fail(md, "robot_state.multi_dof_joint_state: " + std::to_string(names.size()) +
-                        " joint names but " + std::to_string(tr.size()) + " transforms");
-      std::set<std::string> seen;
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        const std::string jn = y_.string(names[i], "joint_names");
-        if (!seen.insert(jn).second) y_.fail(names[i], "multi-DOF joint '" + jn + "' given twice");
-        scene.robot_multi_dof.emplace_back(jn,
-                                           y_.transform(tr[i], "multi_dof_joint_state.transforms"));
-      }
-    }
+    if (YamlReader::has(rs, "multi_dof_joint_state"))
+      scene.robot_multi_dof = y_.multiDofJointState(
+          rs["multi_dof_joint_state"], "robot_state.multi_dof_joint_state",
+          std::numeric_limits<std::size_t>::max(), [](std::size_t) { return std::string(); });
   }
 
   void readFixedFrames(const YAML::Node& list, Scene& scene) {

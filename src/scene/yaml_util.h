@@ -17,7 +17,9 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dss/scene/scene_error.h"
@@ -226,6 +228,35 @@ class YamlReader {
         quaternion(require(n, "rotation", element), element + " rotation").toRotationMatrix();
     X.translation() = vector3(require(n, "translation", element), element + " translation");
     return X;
+  }
+
+  /// sensor_msgs/MultiDOFJointState `n` at `element`: one transform per joint name, names
+  /// distinct, in file order. `max_joints` bounds the count (counted after alias expansion);
+  /// `over_limit(count)` gives the error message beyond it.
+  template <class OverLimit>
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> multiDofJointState(
+      const YAML::Node& n, const std::string& element, std::size_t max_joints,
+      OverLimit&& over_limit) const {
+    checkKeys(n, element, "sensor_msgs/MultiDOFJointState",
+              {"header", "joint_names", "transforms", "twist", "wrench"});
+    const YAML::Node names = has(n, "joint_names")
+                                 ? sequence(n["joint_names"], element + ".joint_names")
+                                 : YAML::Node(YAML::NodeType::Sequence);
+    const YAML::Node tr = has(n, "transforms") ? sequence(n["transforms"], element + ".transforms")
+                                               : YAML::Node(YAML::NodeType::Sequence);
+    if (names.size() != tr.size())
+      fail(n, element + ": " + std::to_string(names.size()) + " joint names but " +
+                  std::to_string(tr.size()) + " transforms");
+    if (names.size() > max_joints) fail(names, over_limit(names.size()));
+    std::vector<std::pair<std::string, Eigen::Isometry3d>> out;
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const std::string name = string(names[i], element + ".joint_names");
+      if (!seen.insert(name).second)
+        fail(names[i], element + ": multi-DOF joint '" + name + "' given twice");
+      out.emplace_back(name, transform(tr[i], element + " transform of '" + name + "'"));
+    }
+    return out;
   }
 
  private:

@@ -72,6 +72,11 @@ struct RobotJoint {
   int numVariables() const { return active_index < 0 ? 0 : (type == JointType::kBall ? 4 : 1); }
 };
 
+/// The motion of a joint (in its joint frame) at its value: `value` points to the joint's one
+/// value, or to a ball joint's four (a quaternion x, y, z, w, normalised here). Identity for a
+/// fixed joint.
+Eigen::Isometry3d jointMotion(const RobotJoint& joint, const double* value);
+
 enum class MultiDofType { kPlanar, kFloating };
 
 /// A planar or floating joint as the robot description names it, and the one-variable joints
