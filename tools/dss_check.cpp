@@ -83,6 +83,9 @@ nlohmann::json describe(const dss::Problem& p) {
         balls.push_back(
             {el.inner_S[k].x(), el.inner_S[k].y(), el.inner_S[k].z(), el.inner_S[k].w()});
       x["inner_balls"] = balls;
+      if (el.has_inner_box)  // inner box (shape frame): centre, half extents
+        x["inner_box"] = {{"center", {el.inner_box_c.x(), el.inner_box_c.y(), el.inner_box_c.z()}},
+                          {"half", {el.inner_box_h.x(), el.inner_box_h.y(), el.inner_box_h.z()}}};
       els.push_back(x);
     }
     l["elements"] = els;

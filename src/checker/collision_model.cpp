@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "dss/checker/element_bounds.h"
-#include "dss/checker/inner_balls.h"
+#include "dss/checker/inner_shapes.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/pose_links.h"
 #include "dss/robot/multi_dof.h"
@@ -132,6 +132,8 @@ void CollisionModel::buildSlots() {
       localBox(ce.shape, &e.box_center_S, &e.box_half);
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
       e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, Element::kMaxInner);
+      e.has_inner_box =
+          innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h);
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);

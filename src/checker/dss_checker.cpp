@@ -68,7 +68,7 @@ bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
   opt.scene_padding = scene_padding;
   opt.self_padding = self_padding;
   opt.obb_stage = settings_.obb_stage;
-  opt.inner_balls = settings_.obb_stage;
+  opt.inner_shapes = settings_.obb_stage;
   const bool hit = pose_links ? sweep<SweepPoses::kPoseLinks>(m, X_WL, skip, opt, scene, self)
                               : sweep<SweepPoses::kOwnLinks>(m, X_WL, skip, opt, scene, self);
   CounterSlots::Slot& c = counterSlot();

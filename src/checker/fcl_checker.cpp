@@ -169,7 +169,7 @@ bool FclChecker::collidesWithinBounds(const double* q, CounterSlots::Slot& c) co
       opt.scene_padding = settings_.scene_padding;
       opt.self_padding = settings_.self_padding;
       opt.obb_stage = settings_.obb_stage;
-      opt.inner_balls = settings_.obb_stage && hulls;
+      opt.inner_shapes = settings_.obb_stage && hulls;
       hit = held ? sweep<SweepPoses::kPoseLinks>(m, s.X_WL.data(), s.skip.data(), opt, scene, self)
                  : sweep<SweepPoses::kOwnLinks>(m, s.X_WL.data(), s.skip.data(), opt, scene, self);
     }

@@ -63,7 +63,7 @@ bool sweepCollides(const dss::CollisionModel& m, const double* q, const Eigen::I
   };
   dss::SweepOptions opt;
   opt.obb_stage = true;
-  opt.inner_balls = true;
+  opt.inner_shapes = true;
   std::vector<unsigned char> skip(m.selfTables().size(), 0);
   if (!q) return dss::sweep<dss::SweepPoses::kOwnLinks>(m, X, skip.data(), opt, scene, self);
   BOOST_REQUIRE(m.heldMatch(q));

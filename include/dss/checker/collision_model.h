@@ -15,7 +15,7 @@
 // The stages that the sweep (sweep.h) runs before the narrow phase each live in their own
 // file: bounding spheres and local boxes (element_bounds.h), the clearance grid
 // (clearance_grid.h), the sphere-box filter (sphere_box_filter.h), oriented boxes (obb.h),
-// inner balls (inner_balls.h), self-pair tables (self_pair_table.h), pose links
+// inner balls and boxes (inner_shapes.h), self-pair tables (self_pair_table.h), pose links
 // (pose_links.h) and pair blocks (pair_blocks.h).
 //
 // Every bound assumes the state's joints within their limits (a prismatic joint's travel,
@@ -80,10 +80,14 @@ class CollisionModel {
     Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
     bool identity_PS = false;
     Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
-    /// Inner balls (inner_balls.h): centre in the shape frame, radius.
+    /// Inner balls (inner_shapes.h): centre in the shape frame, radius.
     static constexpr int kMaxInner = 4;
     int num_inner = 0;
     Eigen::Vector4d inner_S[kMaxInner];
+    /// Inner box (inner_shapes.h), axis-aligned in the shape frame: centre, half extents.
+    bool has_inner_box = false;
+    Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
+    Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
   };
   /// A link with geometry.
   struct Slot {
@@ -154,7 +158,7 @@ class CollisionModel {
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
   /// Half extents of obstacle o when it is a box (centred and turned as obstacleObbs()[o]),
-  /// else negative: the inner-ball stage tests balls against it.
+  /// else negative: the inner stage tests balls and boxes against it.
   const Eigen::Vector3d& obstacleBoxHalf(int o) const { return inner_half_[o]; }
   /// Lower bounds on the distance to the obstacle boxes over the region the moving links
   /// reach: the first test of the sweep for each link sphere.

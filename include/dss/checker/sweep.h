@@ -3,8 +3,9 @@
 // stops at the first collision.
 //
 // Robot vs scene, per moving slot: the clearance grid (one lookup proves the slot's sphere
-// clear of every obstacle), the sphere-box filter (two obstacle boxes at a time), each
-// element's sphere against the box, the oriented-box stage, the inner-ball stage (a ball
+// clear of every obstacle); the obstacles the sphere reaches (the grid's candidate lists, or
+// the sphere-box filter, two obstacle boxes at a time); each element's sphere against the box
+// (slots of several elements); the oriented-box stage, the inner stage (a box or a ball
 // inside the element within the padding of a box obstacle proves a collision), the narrow
 // phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
 // (self_pair_table.h), the slots' spheres, the elements' spheres, the oriented-box stage, the
@@ -18,7 +19,7 @@
 #include <vector>
 
 #include "dss/checker/collision_model.h"
-#include "dss/checker/inner_balls.h"
+#include "dss/checker/inner_shapes.h"
 #include "dss/checker/obb.h"
 
 namespace dss {
@@ -27,10 +28,10 @@ struct SweepOptions {
   double scene_padding = 0.0;  ///< a robot-scene pair collides at distance <= this
   double self_padding = 0.0;   ///< a self pair collides at distance <= this
   bool obb_stage = true;       ///< the oriented-box stage
-  /// The inner-ball stage: only for a narrow phase that sees the elements' own shapes (hulls,
-  /// not the meshes inside them). Self pairs never use it (their collisions are mostly
-  /// decided by the tables).
-  bool inner_balls = false;
+  /// The inner stage (inner boxes and balls): only for a narrow phase that sees the elements' own
+  /// shapes (hulls, not the meshes inside them). Self pairs never use it (their collisions are
+  /// mostly decided by the tables).
+  bool inner_shapes = false;
 };
 
 /// Where the sweep takes a slot's pose from.
@@ -115,55 +116,72 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid.clear(c, r)) continue;
-    // One obstacle that the slot's sphere reaches: its elements through the stages.
-    auto obstacle = [&](int o) {
-      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-        const Element& el = elements[e];
-        if (s.num_elements > 1) {
-          const double re = el.radius + scene_padding;
-          if (detail::sqDistPointAabb(X * elementCenter(el), boxes[o]) > re * re) continue;
-        }
-        Eigen::Isometry3d X_prod;
-        const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
-        if (opt.obb_stage) {
+    // Element e against obstacle o, whose box the element's sphere reaches: the stages.
+    auto pair = [&](int e, int o) {
+      const Element& el = elements[e];
+      Eigen::Isometry3d X_prod;
+      const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
+      if (opt.obb_stage) {
+        const Obb& ob = obbs[o];
+        if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
+                     scene_padding))
+          return false;
+      }
+      if (opt.inner_shapes && (el.has_inner_box || el.num_inner > 0)) {
+        const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
+        if (half.x() >= 0.0) {
           const Obb& ob = obbs[o];
-          if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
-                       scene_padding))
-            continue;
+          if (el.has_inner_box && boxesTouch(X_WS.linear(), X_WS * el.inner_box_c, el.inner_box_h,
+                                             ob.R, ob.c, half, scene_padding))
+            return true;
+          for (int b = 0; b < el.num_inner; ++b)
+            if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half,
+                               scene_padding))
+              return true;
         }
-        if (opt.inner_balls && el.num_inner > 0) {
-          const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
-          if (half.x() >= 0.0) {
-            const Obb& ob = obbs[o];
-            for (int b = 0; b < el.num_inner; ++b)
-              if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c,
-                                 half, scene_padding))
-                return true;
+      }
+      return scene(e, X_WS, o);
+    };
+    // The obstacles whose boxes the sphere (cc, rr) reaches, each through `visit` (true: a
+    // collision): the grid's candidates for the sphere's voxel (obstacles it can reach from
+    // there), else every obstacle of the slot, two boxes at a time.
+    auto reached = [&](const Eigen::Vector3d& cc, double rr, auto&& visit) {
+      if (const std::uint64_t* cand = s.obstacle_bits.empty() ? nullptr : grid.candidates(cc, rr)) {
+        const std::size_t words = s.obstacle_bits.size();
+        for (std::size_t w = 0; w < words; ++w)
+          for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
+            const int o =
+                static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
+            if (detail::sqDistPointAabb(cc, boxes[o]) > rr * rr) continue;
+            if (visit(o)) return true;
           }
+        return false;
+      }
+      for (std::size_t begin = 0; begin < nb; begin += 64) {
+        const std::size_t n = std::min<std::size_t>(64, nb - begin);
+        for (std::uint64_t hits = s.boxes.hits(begin, n, cc, rr * rr); hits; hits &= hits - 1) {
+          const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
+          if (visit(s.obstacles[i])) return true;
         }
-        if (scene(e, X_WS, o)) return true;
       }
       return false;
     };
-    // The grid's candidates for the sphere's voxel (obstacles it can reach from there) that
-    // the slot is checked against; else every obstacle of the slot, two boxes at a time.
-    if (const std::uint64_t* cand = s.obstacle_bits.empty() ? nullptr : grid.candidates(c, r)) {
-      const std::size_t words = s.obstacle_bits.size();
-      for (std::size_t w = 0; w < words; ++w)
-        for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
-          const int o = static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
-          if (detail::sqDistPointAabb(c, boxes[o]) > r * r) continue;
-          if (obstacle(o)) return true;
-        }
+    if (s.num_elements == 1) {
+      const int e = s.first_element;
+      if (reached(c, r, [&](int o) { return pair(e, o); })) return true;
       continue;
     }
-    for (std::size_t begin = 0; begin < nb; begin += 64) {
-      const std::size_t n = std::min<std::size_t>(64, nb - begin);
-      for (std::uint64_t hits = s.boxes.hits(begin, n, c, r * r); hits; hits &= hits - 1) {
-        const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
-        if (obstacle(s.obstacles[i])) return true;
+    // Several elements (a base with its bumper, deck and wheels): the obstacles the slot's
+    // sphere reaches, each against the elements whose own spheres reach its box.
+    const auto element = [&](int o) {
+      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+        const double re = elements[e].radius + scene_padding;
+        if (detail::sqDistPointAabb(X * elementCenter(elements[e]), boxes[o]) > re * re) continue;
+        if (pair(e, o)) return true;
       }
-    }
+      return false;
+    };
+    if (reached(c, r, element)) return true;
   }
   // Self pairs, block by block.
   const CollisionModel::SelfPair* const pairs = model.selfPairs().data();

@@ -1,0 +1,78 @@
+// Inner balls and inner boxes: up to four balls and one box inside an element's shape. One
+// that comes within the padding of an obstacle box proves the pair colliding without a narrow
+// phase (the sweep's inner stage, for narrow phases that see the elements' own shapes). The box
+// matters for flat and wide elements (a mobile base's bumper, a deck), whose balls are small.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "dss/core/any_shape.h"
+
+namespace dss {
+
+/// Up to `max_out` balls inside `shape` (centre in the shape frame, radius), along the longest
+/// axis of its local box (box_c, box_h; element_bounds.h). The radius of a ball at c is the
+/// distance from c to the shape's boundary (for a hull: to its facet planes), reduced by a
+/// relative 1e-7 of the shape's size, far above the rounding of the planes; every ball kept is
+/// checked against the support function in the facet normals and 26 fixed directions. Cones
+/// and flat hulls get none. Returns the number written.
+int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
+               Eigen::Vector4d* out, int max_out);
+
+/// True when the ball (c, r) comes within `pad` of the box (rotation, centre, half extents),
+/// with a relative margin against rounding: a safe "colliding". NaN anywhere gives false.
+inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R,
+                           const Eigen::Vector3d& bc, const Eigen::Vector3d& h, double pad) {
+  const Eigen::Vector3d t = c - bc;
+  const Eigen::Vector3d p(R.col(0).dot(t), R.col(1).dot(t), R.col(2).dot(t));
+  const double reach = r + pad - 1e-9 * (1.0 + t.cwiseAbs().sum() + h.sum() + r);
+  if (!(reach > 0.0) || !(h.x() >= 0.0)) return false;
+  const Eigen::Vector3d d = (p.cwiseAbs() - h).cwiseMax(0.0);
+  return d.squaredNorm() < reach * reach;
+}
+
+/// A box inside `shape`, axis-aligned in the shape frame (centre, half extents): boxes are
+/// themselves, cylinders and capsules get a square section, ellipsoids radii/sqrt(3), hulls the
+/// local box (box_c, box_h) shrunk about its centre, axis by axis, until its corners lie
+/// inside every facet plane. Shrunk by a relative 1e-7 of the shape's size; every corner is
+/// checked against the support function as the balls are. False (no box) for spheres (their
+/// ball is better), cones, flat hulls and boxes thinner than 5 % of the local box.
+bool innerBox(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
+              Eigen::Vector3d* c, Eigen::Vector3d* h);
+
+/// True when the oriented boxes A (rotation, centre, half extents) and B come within `pad` of
+/// each other: a safe "colliding". A grown by pad/sqrt(3) per axis stays within pad of A, and
+/// two boxes that overlap on all 15 separating axes intersect; every axis must show an overlap
+/// larger than a relative margin that covers rounding, and a cross axis of nearly parallel
+/// edges (sine below 1e-12), which rounding cannot decide, is left out: for such edges the
+/// face axes' margin covers it. NaN anywhere gives false.
+inline bool boxesTouch(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                       const Eigen::Vector3d& ha_in, const Eigen::Matrix3d& Rb,
+                       const Eigen::Vector3d& cb, const Eigen::Vector3d& hb, double pad) {
+  const Eigen::Vector3d ha = ha_in.array() + pad * 0.57735026918962573;  // 1/sqrt(3), rounded down
+  const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
+  const double margin = 1e-9 * (ha.sum() + hb.sum() + t.cwiseAbs().sum()) + 1e-300;
+  Eigen::Matrix3d R, A;
+  for (int j = 0; j < 3; ++j) {
+    R.col(j) = Ra.transpose() * Rb.col(j);
+    A.col(j) = R.col(j).cwiseAbs();
+    if (!(std::abs(t.dot(R.col(j))) < ha.dot(A.col(j)) + hb[j] - margin)) return false;
+  }
+  for (int i = 0; i < 3; ++i)
+    if (!(std::abs(t[i]) < ha[i] + hb.dot(A.row(i)) - margin)) return false;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      // The axis a_i x b_j has length sqrt(R(i1,j)^2 + R(i2,j)^2) (the sine of their angle).
+      if (R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j) < 1e-24) continue;
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ha[i1] * A(i2, j) + ha[i2] * A(i1, j);
+      const double rb = hb[j1] * A(i, j2) + hb[j2] * A(i, j1);
+      if (!(std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) < ra + rb - margin)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace dss
