@@ -132,8 +132,14 @@ void CollisionModel::buildSlots() {
       localBox(ce.shape, &e.box_center_S, &e.box_half);
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
       e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, Element::kMaxInner);
+      // The box only where it holds more than the balls (flat and boxy elements): on rounded
+      // links it would be small and cost a test whenever a pair reaches the inner stage.
+      double balls_volume = 0.0;
+      for (int b = 0; b < e.num_inner; ++b)
+        balls_volume += 4.18879020478639 * std::pow(e.inner_S[b].w(), 3);  // 4/3 pi r^3
       e.has_inner_box =
-          innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h);
+          innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h) &&
+          8.0 * e.inner_box_h.prod() >= balls_volume;
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);
@@ -297,6 +303,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
     Eigen::Vector3d c_S;
     localBox(ob.shape, &c_S, &b.h);
     b.R = ob.X_WO.linear();
+    b.axis_aligned = b.R == Eigen::Matrix3d::Identity();
     b.c = ob.X_WO * c_S;
     obbs_.push_back(b);
     const auto* box = std::get_if<Box>(&ob.shape);

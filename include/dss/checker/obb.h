@@ -12,21 +12,21 @@ struct Obb {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  bool axis_aligned = false;  ///< R is exactly the identity (obbApartAxisAligned)
 };
 
-/// Separating-axis test of two oriented boxes: true when one of the 15 axes separates them by
-/// more than `pad` plus a relative margin that covers the rounding of the test, so "true" is a
-/// safe "disjoint (distance > pad)". NaN anywhere gives false.
-inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
-                     const Eigen::Vector3d& ha, const Eigen::Matrix3d& Rb,
-                     const Eigen::Vector3d& cb, const Eigen::Vector3d& hb, double pad) {
-  const Eigen::Vector3d t = Ra.transpose() * (cb - ca);
+namespace detail {
+/// The 15-axis test of obbApart with B's axes in A's frame: column(j) gives column j of
+/// R = Ra^T Rb, t is B's centre minus A's in A's frame.
+template <class Column>
+inline bool obbApartInA(const Eigen::Vector3d& t, const Eigen::Vector3d& ha,
+                        const Eigen::Vector3d& hb, double pad, Column&& column) {
   const double margin = pad + 1e-9 * (ha.sum() + hb.sum() + t.cwiseAbs().sum()) + 1e-12;
-  // B's axes first, each as soon as its column of R = Ra^T Rb is known: in the sweep B is the
-  // obstacle (walls, shelves, tables), whose face normals separate most pairs that get here.
+  // B's axes first, each as soon as its column of R is known: in the sweep B is the obstacle
+  // (walls, shelves, tables), whose face normals separate most pairs that get here.
   Eigen::Matrix3d R, A;
   for (int j = 0; j < 3; ++j) {
-    R.col(j) = Ra.transpose() * Rb.col(j);
+    R.col(j) = column(j);
     A.col(j) = R.col(j).cwiseAbs().array() + 1e-12;
     if (std::abs(t.dot(R.col(j))) > ha.dot(A.col(j)) + hb[j] + margin) return true;
   }
@@ -42,6 +42,26 @@ inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
     }
   }
   return false;
+}
+}  // namespace detail
+
+/// Separating-axis test of two oriented boxes: true when one of the 15 axes separates them by
+/// more than `pad` plus a relative margin that covers the rounding of the test, so "true" is a
+/// safe "disjoint (distance > pad)". NaN anywhere gives false.
+inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                     const Eigen::Vector3d& ha, const Eigen::Matrix3d& Rb,
+                     const Eigen::Vector3d& cb, const Eigen::Vector3d& hb, double pad) {
+  return detail::obbApartInA(Ra.transpose() * (cb - ca), ha, hb, pad,
+                             [&](int j) { return Eigen::Vector3d(Ra.transpose() * Rb.col(j)); });
+}
+
+/// obbApart for a box B whose rotation is exactly the identity (most obstacles: walls,
+/// shelves, tables): R = Ra^T needs no product.
+inline bool obbApartAxisAligned(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                                const Eigen::Vector3d& ha, const Eigen::Vector3d& cb,
+                                const Eigen::Vector3d& hb, double pad) {
+  return detail::obbApartInA(Ra.transpose() * (cb - ca), ha, hb, pad,
+                             [&](int j) { return Eigen::Vector3d(Ra.row(j).transpose()); });
 }
 
 }  // namespace dss

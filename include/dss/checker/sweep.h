@@ -123,8 +123,10 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
       if (opt.obb_stage) {
         const Obb& ob = obbs[o];
-        if (obbApart(X_WS.linear(), X_WS * el.box_center_S, el.box_half, ob.R, ob.c, ob.h,
-                     scene_padding))
+        const Eigen::Vector3d box_c = X_WS * el.box_center_S;
+        if (ob.axis_aligned
+                ? obbApartAxisAligned(X_WS.linear(), box_c, el.box_half, ob.c, ob.h, scene_padding)
+                : obbApart(X_WS.linear(), box_c, el.box_half, ob.R, ob.c, ob.h, scene_padding))
           return false;
       }
       if (opt.inner_shapes && (el.has_inner_box || el.num_inner > 0)) {
