@@ -100,10 +100,12 @@ const char* kUsage =
     "truth-free\n"
     "                       end; F >= 1 (default): independent pairs of truth-free states\n"
     "  --plan-time S        RRTConnect time limit per problem (10 s)\n"
+    "  --decompose-tolerance M  the decomposed geometry's concavity target (0.008 m)\n"
     "  --no-plan            skip the planning runs\n"
     "  --shared DIR         shared robots and scenes (default: the build's DSS_SHARED_DIR)\n"
     "  --quick              seconds-long run for CI (1 scene per robot, few states, 1 plan)\n"
-    "  Exit status: 0; 1 on bad options or input; 3 when hull+exact misses a collision of the\n"
+    "  Exit status: 0; 1 on bad options or input; 3 when hull+exact (or decomposed+exact)\n"
+    "  misses a collision of the\n"
     "  mesh truth that FCL's own gap does not explain; 77 when the shared robots are absent\n"
     "  (nothing measured).\n";
 
@@ -122,6 +124,7 @@ struct Args {
   bool plan = true;
   std::string shared = DSS_SHARED_DIR_DEFAULT;
   bool quick = false;
+  double decompose_tolerance = 0.008;  // the "decomposed" geometry's concavity target (m)
   std::string command;
 };
 
@@ -145,7 +148,7 @@ double parseNumber(const std::string& opt, const std::string& v) {
 // ---------------------------------------------------------------------------------------------
 // Robots, variants and settings
 
-enum class Geo { kHull, kSpheres, kCapsules, kMesh, kFclHull };
+enum class Geo { kHull, kSpheres, kCapsules, kMesh, kFclHull, kDecomposed };
 
 const char* geoName(Geo g) {
   switch (g) {
@@ -159,6 +162,8 @@ const char* geoName(Geo g) {
       return "mesh";
     case Geo::kFclHull:
       return "fcl-hull";
+    case Geo::kDecomposed:
+      return "decomposed";
   }
   return "?";
 }
@@ -257,6 +262,7 @@ std::vector<Setting> allSettings() {
   add("capsules", "geometry", Geo::kCapsules, E, 64, 0, 0.01, false);
   add("mesh", "geometry", Geo::kMesh, E, 64, 0, 0.01, true);
   add("fcl-hull", "geometry", Geo::kFclHull, E, 64, 0, 0.01, false);
+  add("decomposed", "geometry", Geo::kDecomposed, E, 64, 0, 0.01, true);
   add("double", "arithmetic", Geo::kHull, Mode::kDouble, 64, 0, 0.01, false);
   add("float", "arithmetic", Geo::kHull, Mode::kFloat, 64, 0, 0.01, false);
   add("pad 5mm", "padding", Geo::kHull, E, 64, 0.005, 0.01, false);
@@ -280,9 +286,11 @@ std::vector<Setting> allSettings() {
 struct Loaded {
   LoadedRobot truth;
   std::optional<LoadedRobot> spheres, capsules;
+  std::optional<LoadedRobot> decomposed;  // the reference URDF, meshes as convex pieces
   const LoadedRobot* get(Geo g) const {
     if (g == Geo::kSpheres) return spheres ? &*spheres : nullptr;
     if (g == Geo::kCapsules) return capsules ? &*capsules : nullptr;
+    if (g == Geo::kDecomposed) return decomposed ? &*decomposed : nullptr;
     return &truth;
   }
 };
@@ -317,9 +325,10 @@ struct SceneCtx {
 
 std::string problemKey(Geo g, double margin) {
   std::ostringstream os;
-  os << (g == Geo::kSpheres    ? "spheres"
-         : g == Geo::kCapsules ? "capsules"
-                               : "truth")
+  os << (g == Geo::kSpheres      ? "spheres"
+         : g == Geo::kCapsules   ? "capsules"
+         : g == Geo::kDecomposed ? "decomposed"
+                                 : "truth")
      << "|" << margin;
   return os.str();
 }
@@ -719,6 +728,23 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
   };
   run.L.spheres = loadVariant(spec.spheres, "sphere");
   run.L.capsules = loadVariant(spec.capsules, "capsule");
+  // The reference URDF with every mesh decomposed (only when a setting needs it: the first
+  // load of a robot computes its decompositions; later ones read them from the cache).
+  if (std::any_of(settings.begin(), settings.end(),
+                  [](const Setting& s) { return s.geo == Geo::kDecomposed; })) {
+    LoadOptions lo;
+    lo.meshes.geometry = MeshGeometry::kDecompose;
+    lo.meshes.decomposition.tolerance = a.decompose_tolerance;
+    const double t0 = cpuNow();
+    run.L.decomposed = loadRobot(robotPath(a, spec.truth.urdf), robotPath(a, spec.truth.srdf), lo);
+    std::size_t pieces = 0, meshes = 0;
+    for (const auto& l : run.L.decomposed->model->links)
+      for (const auto& c : l.collisions)
+        if (c.piece >= 0) ++pieces, meshes += c.piece == 0;
+    std::cout << "  decomposed model: " << meshes << " meshes as " << pieces
+              << " convex pieces (tolerance " << a.decompose_tolerance * 1e3 << " mm), loaded in "
+              << std::setprecision(2) << cpuNow() - t0 << " s CPU\n";
+  }
 
   // Scenes.
   const int per_type = std::min(a.quick ? 1 : a.scenes_per_type, spec.max_scenes_per_type);
@@ -777,7 +803,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
   std::cout << "  reference (truth) model: " << ref0.p.model->summary() << "\n";
   {
     std::mt19937_64 krng(a.seed + 7);
-    for (Geo g : {Geo::kSpheres, Geo::kCapsules}) {
+    for (Geo g : {Geo::kSpheres, Geo::kCapsules, Geo::kDecomposed}) {
       if (!run.L.get(g)) continue;
       VariantProblem& vp = problemFor(*run.scenes[0], run.L, g, 0.0, &ref0);
       std::cout << "  " << geoName(g) << " model " << run.L.get(g)->model->source << ": "
@@ -995,7 +1021,9 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     r.model = fs::path(r.model).lexically_relative(a.shared + "/robots").string();
     r.scenes = int(nsc);
     const auto& as = ans_state.at(s->stateKey());
-    const bool hull_exact = s->geo == Geo::kHull && s->mode == Mode::kExact && s->pad == 0.0;
+    // Hulls and decomposed pieces contain the meshes: exact DSS on them must never miss.
+    const bool hull_exact = (s->geo == Geo::kHull || s->geo == Geo::kDecomposed) &&
+                            s->mode == Mode::kExact && s->pad == 0.0;
     const bool tally_fa = s->mode == Mode::kExact && s->pad == 0.0 && s->cap == 64 && !s->isFcl() &&
                           s->resolution == 0.01;
     std::map<std::string, long> fa_pairs;
@@ -1285,7 +1313,8 @@ int runTradeoff(int argc, char** argv) {
         }
         a.only.insert(s);
       }
-    } else if (o == "--delta" || o == "--motion-length" || o == "--plan-time") {
+    } else if (o == "--delta" || o == "--motion-length" || o == "--plan-time" ||
+               o == "--decompose-tolerance") {
       const std::string v = value();
       cmd << " " << v;
       const double x = parseNumber(o, v);
@@ -1294,6 +1323,8 @@ int runTradeoff(int argc, char** argv) {
         a.delta = x;
       else if (o == "--motion-length")
         a.motion_length = x;
+      else if (o == "--decompose-tolerance")
+        a.decompose_tolerance = x;
       else
         a.plan_time = x;
     } else if (o == "--no-plan")

@@ -73,6 +73,7 @@ add fuzz_plan_request '' "${request_yamls[@]}" "$src"/fuzz/seeds/fuzz_plan_reque
 add fuzz_scene_text '' "${scenes[@]}" "$src"/fuzz/seeds/fuzz_scene_text/*
 add fuzz_pairs '' "$src"/fuzz/seeds/fuzz_pairs/*
 add fuzz_joint_states_csv '' "$src"/fuzz/seeds/fuzz_joint_states_csv/*
+add fuzz_decomposition_cache '' "$src"/fuzz/seeds/fuzz_decomposition_cache/*
 # The mesh target's first byte chooses the extension (0 .stl, 1 .obj, 2 .dae; 3-5 mirrored).
 add fuzz_mesh '\000' "${stls[@]}" "$src"/fuzz/seeds/fuzz_mesh/*.stl
 add fuzz_mesh '\003' "$src"/fuzz/seeds/fuzz_mesh/*.stl

@@ -58,6 +58,7 @@
 #include "dss/robot/multi_dof.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "mesh_cli.h"
 #include "path_replay.h"
 #include "render_html.h"
 
@@ -98,7 +99,8 @@ const char* kUsage =
     "  planners: RRTConnect RRT RRTstar LazyRRT BiTRRT pRRT PRM PRMstar LazyPRM KPIECE1\n"
     "            BKPIECE1 LBKPIECE1 EST SBL pSBL\n"
     "  exit codes: 0 every problem solved; 1 runtime error (files, model); 2 usage error;\n"
-    "           3 a problem not solved (stdout then has \"solved\":false)\n";
+    "           3 a problem not solved (stdout then has \"solved\":false)\n"
+    "  robot meshes:\n";
 
 using PlannerFactory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
 
@@ -158,6 +160,7 @@ struct Args {
   unsigned long seed = 1;
   bool simplify = false;
   bool check_time = false;  // wrap the checker in TimedChecker (costs two clock reads per check)
+  dss::MeshGeometryOptions meshes;
   bool demo = false;
   dss::Options dss_options;  // --mode, --max-iterations
   bool benchmark = false;
@@ -673,8 +676,10 @@ int run(int argc, char** argv) {
   Args a;
   a.demo = argc == 1;
   bool checker_given = false, runs_given = false, log_given = false;
-  dss::cli::ArgCursor cli(argc, argv, "dss_plan", kUsage);
+  const std::string usage = std::string(kUsage) + dss::cli::kMeshOptionsUsage;
+  dss::cli::ArgCursor cli(argc, argv, "dss_plan", usage.c_str());
   while (cli.next()) {
+    if (dss::cli::meshOption(cli, &a.meshes)) continue;
     if (cli.option("--robot"))
       a.robot = cli.value();
     else if (cli.option("--srdf"))
@@ -812,7 +817,9 @@ int run(int argc, char** argv) {
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(a.seed);
-  const dss::LoadedRobot robot = dss::loadRobot(a.robot, a.srdf);
+  dss::LoadOptions load;
+  load.meshes = a.meshes;
+  const dss::LoadedRobot robot = dss::loadRobot(a.robot, a.srdf, load);
   for (const auto& w : robot.warnings()) std::cerr << "dss_plan: warning: " << w << "\n";
   if (a.benchmark) return runBenchmark(a, robot, problems);
 

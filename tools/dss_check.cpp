@@ -22,6 +22,7 @@
 #include "dss/planning/planning_problem.h"
 #include "dss/robot/joint_states_csv.h"
 #include "dss/scene/scene_loader.h"
+#include "mesh_cli.h"
 
 namespace {
 
@@ -42,7 +43,8 @@ const char* kUsage =
     "                 floating joints' translation; needed when the group moves one)\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
-    "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n";
+    "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
+    "robot meshes:\n";
 
 double threadCpuSeconds() {
   timespec ts{};
@@ -77,6 +79,11 @@ nlohmann::json describe(const dss::Problem& p) {
       x["shape"] = dss::shapeTypeName(ce.shape);
       x["description"] = ce.description;
       if (const auto* h = std::get_if<dss::ConvexHull>(&ce.shape)) x["hull_vertices"] = h->size();
+      if (ce.piece >= 0) {  // a piece of a decomposed mesh
+        x["piece"] = ce.piece + 1;
+        x["pieces"] = ce.pieces;
+        x["concavity"] = ce.concavity;
+      }
       const auto& el = m.elements()[e];
       json balls = json::array();  // inner balls (shape frame): x, y, z, radius
       for (int k = 0; k < el.num_inner; ++k)
@@ -145,8 +152,11 @@ int run(int argc, char** argv) {
   bool box_stage = true;
   int threads = 1;
   std::vector<double> workspace;
-  dss::cli::ArgCursor cli(argc, argv, "dss_check", kUsage);
+  const std::string usage = std::string(kUsage) + dss::cli::kMeshOptionsUsage;
+  dss::cli::ArgCursor cli(argc, argv, "dss_check", usage.c_str());
+  dss::MeshGeometryOptions meshes;
   while (cli.next()) {
+    if (dss::cli::meshOption(cli, &meshes)) continue;
     if (cli.option("--robot"))
       robot = cli.value();
     else if (cli.option("--srdf"))
@@ -190,7 +200,9 @@ int run(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
-  dss::LoadedRobot r = dss::loadRobot(robot, srdf);
+  dss::LoadOptions load;
+  load.meshes = meshes;
+  dss::LoadedRobot r = dss::loadRobot(robot, srdf, load);
   if (!workspace.empty())
     r = dss::withWorkspace(r, Eigen::Vector3d(workspace[0], workspace[1], workspace[2]),
                            Eigen::Vector3d(workspace[3], workspace[4], workspace[5]));

@@ -391,6 +391,11 @@ std::string CollisionModel::summary() const {
      << scene_pairs_ << " of " << scene_pairs_before_ << " robot-scene link pairs, "
      << self_pairs_.size() << " of " << self_report_.all_pairs << " self link pairs (" << moving
      << " of " << slots_.size() << " links with geometry move)";
+  // Decomposed meshes: their pieces are elements of their links.
+  std::size_t pieces = 0, meshes = 0;
+  for (const auto& e : elements_)
+    if (e.source->piece >= 0) ++pieces, meshes += e.source->piece == 0;
+  if (pieces > 0) os << ", " << meshes << " meshes as " << pieces << " convex pieces";
   if (self_tables_.size() > 0) {
     std::size_t cells = 0, free = 0, colliding = 0;
     for (const auto& t : self_tables_.tables())

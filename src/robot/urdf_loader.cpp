@@ -12,6 +12,7 @@
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "../common/urdf_tree_check.h"
 #include "dss/mesh/mesh.h"
@@ -100,15 +101,20 @@ Scan scanDocument(const TiXmlDocument& doc, const std::string& file) {
   return scan;
 }
 
+// One mesh file at one scale, as hull or as pieces: loaded (and decomposed) once per robot.
+struct MeshPieces {
+  std::vector<ConvexHull> hulls;
+  std::vector<double> concavity;
+};
 struct MeshCache {
-  std::map<std::pair<std::string, std::array<double, 3>>, ConvexHull> hulls;
+  std::map<std::tuple<std::string, std::array<double, 3>, bool>, MeshPieces> meshes;
 };
 
-// One <collision> element -> a shape, or an empty optional with `why` set.
-std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const std::string& link,
-                                              const std::string& file, const std::string& base_dir,
-                                              const LoadOptions& options, MeshCache& cache,
-                                              std::string& why) {
+// One <collision> element -> its shapes (several for a decomposed mesh), or none with `why` set.
+std::vector<CollisionElement> makeCollision(const ScannedCollision& sc, const std::string& link,
+                                            const std::string& file, const std::string& base_dir,
+                                            const LoadOptions& options, MeshCache& cache,
+                                            std::string& why) {
   const TiXmlElement* c = sc.element;
   const std::string what = "link '" + link + "' collision[" + std::to_string(sc.index) + "]";
   CollisionElement out;
@@ -117,7 +123,7 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
   const TiXmlElement* g = geometry ? geometry->FirstChildElement() : nullptr;
   if (!g) {
     why = xml::where(file, c) + ": " + what + " has no geometry";
-    return std::nullopt;
+    return {};
   }
   const std::string type = g->Value();
   auto positive = [&](const char* attribute, int count) {
@@ -176,13 +182,31 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
     out.description = what + " mesh " + *path;
     out.mesh_path = *path;
     out.mesh_scale = scale;
-    const auto key = std::make_pair(*path, std::array<double, 3>{scale.x(), scale.y(), scale.z()});
-    auto it = cache.hulls.find(key);
-    if (it == cache.hulls.end()) {
+    const auto mode_it = options.meshes.links.find(link);
+    const bool decompose =
+        (mode_it != options.meshes.links.end() ? mode_it->second : options.meshes.geometry) ==
+        MeshGeometry::kDecompose;
+    const auto key =
+        std::make_tuple(*path, std::array<double, 3>{scale.x(), scale.y(), scale.z()}, decompose);
+    auto it = cache.meshes.find(key);
+    if (it == cache.meshes.end()) {
       const std::size_t max_vertices = options.limits.max_mesh_vertices;
       try {
         const mesh::TriangleMesh m = mesh::loadMesh(*path, scale, max_vertices);
-        it = cache.hulls.emplace(key, mesh::convexHull(m.vertices, out.description)).first;
+        MeshPieces pieces;
+        if (!decompose) {
+          pieces.hulls.push_back(mesh::convexHull(m.vertices, out.description));
+          pieces.concavity.push_back(0.0);
+        } else {
+          const mesh::Decomposition d = mesh::decomposeCached(
+              m, options.meshes.decomposition, out.description, options.meshes.cache_dir);
+          for (std::size_t i = 0; i < d.pieces.size(); ++i) {
+            pieces.hulls.push_back(mesh::convexHull(
+                d.pieces[i].points, out.description + " piece " + std::to_string(i + 1)));
+            pieces.concavity.push_back(d.pieces[i].concavity);
+          }
+        }
+        it = cache.meshes.emplace(key, std::move(pieces)).first;
       } catch (const std::length_error& e) {
         xml::fail(file, g,
                   what + ": " + e.what() +
@@ -192,12 +216,28 @@ std::optional<CollisionElement> makeCollision(const ScannedCollision& sc, const 
         xml::fail(file, g, what + ": " + e.what());
       }
     }
-    out.shape = it->second;
+    const MeshPieces& pieces = it->second;
+    if (!decompose) {
+      out.shape = pieces.hulls.front();
+      return {out};
+    }
+    std::vector<CollisionElement> all;
+    const int n = static_cast<int>(pieces.hulls.size());
+    for (int i = 0; i < n; ++i) {
+      CollisionElement piece = out;
+      piece.shape = pieces.hulls[i];
+      piece.piece = i;
+      piece.pieces = n;
+      piece.concavity = pieces.concavity[i];
+      piece.description += " piece " + std::to_string(i + 1) + "/" + std::to_string(n);
+      all.push_back(std::move(piece));
+    }
+    return all;
   } else {
     why = xml::where(file, g) + ": " + what + " has unsupported geometry <" + type + ">";
-    return std::nullopt;
+    return {};
   }
-  return out;
+  return {out};
 }
 
 }  // namespace
@@ -444,6 +484,10 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
   }
 
   // Collision elements, every one accounted for.
+  for (const auto& [name, mode] : options.meshes.links)
+    if (model.linkIndex(name) < 0)
+      throw std::runtime_error(file + ": the mesh options name link '" + name + "', which robot '" +
+                               model.name + "' does not have");
   if (options.load_collisions) {
     MeshCache cache;
     std::vector<std::string> dropped;
@@ -453,10 +497,8 @@ RobotModel loadUrdfString(const std::string& text, const std::string& file,
       for (const auto& sc : it->second) {
         std::string why;
         auto c = makeCollision(sc, link.name, file, base_dir, options, cache, why);
-        if (c)
-          link.collisions.push_back(std::move(*c));
-        else
-          dropped.push_back(why);
+        if (c.empty()) dropped.push_back(why);
+        for (auto& e : c) link.collisions.push_back(std::move(e));
       }
     }
     if (!dropped.empty()) {

@@ -98,7 +98,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   // World centres of the slot spheres, once per state (per-thread scratch, no allocation after
   // the first call with a model this size). The vector and the slot count are read once:
   // inside the loops the compiler would reload both after every store.
-  thread_local std::vector<Eigen::Vector3d> center_store;
+  thread_local std::vector<Eigen::Vector3d> center_store, element_store;
   const std::size_t num_slots = model.slots().size();
   if (center_store.size() < num_slots) center_store.resize(num_slots);
   Eigen::Vector3d* const centers = center_store.data();
@@ -202,24 +202,46 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const Slot& sb = slots[p.b];
       const Eigen::Isometry3d& XA = X_WL[linkOf(sa)];
       const Eigen::Isometry3d& XB = X_WL[linkOf(sb)];
-      const bool single = sa.num_elements == 1 && sb.num_elements == 1;
+      if (sa.num_elements == 1 && sb.num_elements == 1) {
+        const int ea = sa.first_element, eb = sb.first_element;
+        Eigen::Isometry3d X_prod_a, X_prod_b;
+        const Eigen::Isometry3d& X_WA = detail::placedShape<kPoses>(XA, elements[ea], X_prod_a);
+        const Eigen::Isometry3d& X_WB = detail::placedShape<kPoses>(XB, elements[eb], X_prod_b);
+        if (opt.obb_stage &&
+            obbApart(X_WA.linear(), X_WA * elements[ea].box_center_S, elements[ea].box_half,
+                     X_WB.linear(), X_WB * elements[eb].box_center_S, elements[eb].box_half,
+                     self_padding))
+          continue;
+        if (self(ea, X_WA, eb, X_WB)) return true;
+        continue;
+      }
+      // Several elements (the pieces of decomposed meshes): b's element centres once; each
+      // element of a against b's sphere first, then against b's elements.
+      if (element_store.size() < std::size_t(sb.num_elements))
+        element_store.resize(std::size_t(sb.num_elements));
+      Eigen::Vector3d* const cb = element_store.data();
+      for (int k = 0; k < sb.num_elements; ++k)
+        cb[k] = XB * elementCenter(elements[sb.first_element + k]);
       for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea) {
         const Element& a = elements[ea];
+        const Eigen::Vector3d ca = XA * elementCenter(a);
+        const double row = a.radius + sb.radius + self_padding;
+        if ((ca - centers[p.b]).squaredNorm() > row * row) continue;
         Eigen::Isometry3d X_prod_a;
-        const Eigen::Isometry3d& X_WA = detail::placedShape<kPoses>(XA, a, X_prod_a);
-        for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb) {
+        const Eigen::Isometry3d* X_WA = nullptr;  // placed when a pair first needs it
+        for (int k = 0; k < sb.num_elements; ++k) {
+          const int eb = sb.first_element + k;
           const Element& b = elements[eb];
-          if (!single) {
-            const double rr = a.radius + b.radius + self_padding;
-            if ((XA * elementCenter(a) - XB * elementCenter(b)).squaredNorm() > rr * rr) continue;
-          }
+          const double rr = a.radius + b.radius + self_padding;
+          if ((ca - cb[k]).squaredNorm() > rr * rr) continue;
+          if (!X_WA) X_WA = &detail::placedShape<kPoses>(XA, a, X_prod_a);
           Eigen::Isometry3d X_prod_b;
           const Eigen::Isometry3d& X_WB = detail::placedShape<kPoses>(XB, b, X_prod_b);
           if (opt.obb_stage &&
-              obbApart(X_WA.linear(), X_WA * a.box_center_S, a.box_half, X_WB.linear(),
+              obbApart(X_WA->linear(), *X_WA * a.box_center_S, a.box_half, X_WB.linear(),
                        X_WB * b.box_center_S, b.box_half, self_padding))
             continue;
-          if (self(ea, X_WA, eb, X_WB)) return true;
+          if (self(ea, *X_WA, eb, X_WB)) return true;
         }
       }
     }

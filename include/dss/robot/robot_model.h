@@ -96,6 +96,11 @@ struct CollisionElement {
   /// vertices; the shape is the hull of the scaled vertices. Empty for primitives.
   std::string mesh_path;
   Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  /// A piece of a decomposed mesh (MeshGeometry::kDecompose): its index among `pieces` and its
+  /// certified concavity (m; mesh::ConvexPiece); piece -1 for a plain hull or a primitive.
+  int piece = -1;
+  int pieces = 1;
+  double concavity = 0.0;
 };
 
 struct RobotLink {
