@@ -4,7 +4,7 @@
 // bytes must end in "no usable file" or in a decomposition whose pieces are at most the cap,
 // non-empty, finite, cover every mesh vertex (the reader checks it), and that formats and
 // parses back to the same numbers, bit for bit. The seed in fuzz/seeds/ is this mesh's
-// decomposition (tolerance 0.05, 4 pieces) at kDecompositionVersion 2; a file of another
+// decomposition (tolerance 0.05, 4 pieces) at kDecompositionVersion 3; a file of another
 // version is refused at its key line, so regenerate the seed when the version changes.
 #include <cinttypes>
 #include <cmath>

@@ -1480,9 +1480,10 @@ Decomposition decomposeConvex(const TriangleMesh& mesh, const DecompositionOptio
     out.max_concavity = std::max(out.max_concavity, piece.concavity);
     out.pieces.push_back(std::move(piece));
   }
-  // Pieces that do not beat the single hull are not worth their cost (an open shell, whose
-  // inside counts as concave, ends here).
-  if (out.pieces.size() > 1 && !(out.max_concavity < out.hull_concavity)) {
+  // Pieces that do not cut the single hull's concavity by at least a fifth are not worth
+  // their cost: every piece is one more element per check (an open shell, whose inside counts
+  // as concave, ends here).
+  if (out.pieces.size() > 1 && !(out.max_concavity <= 0.8 * out.hull_concavity)) {
     out.pieces.assign(1, std::move(whole));
     out.max_concavity = out.hull_concavity;
   }

@@ -49,8 +49,8 @@ struct Decomposition {
 /// largest concavity first, along planes through its deepest pocket, its reflex edges and an
 /// even sweep, ranked by the concavity of the two sides; pieces whose joint hull meets the
 /// tolerance are merged, and at the cap a merge of two better pieces may buy another cut of the
-/// worst one. Pieces whose largest concavity does not beat the single hull's give way to that
-/// hull (one piece).
+/// worst one. Pieces whose largest concavity is not below 4/5 of the single hull's give way to
+/// that hull (one piece): they would cost more checks than they save false alarms.
 ///
 /// Guarantee: every vertex of the mesh lies in some piece (exactly: it is a piece point or
 /// inside a piece by a margin far above rounding); every point of every triangle and, when

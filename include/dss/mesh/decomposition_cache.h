@@ -18,7 +18,7 @@
 namespace dss::mesh {
 
 /// Bumped whenever decomposeConvex can give other pieces for the same input.
-inline constexpr int kDecompositionVersion = 2;
+inline constexpr int kDecompositionVersion = 3;
 
 /// The cache key of (mesh, options).
 std::uint64_t decompositionKey(const TriangleMesh& mesh, const DecompositionOptions& options);
