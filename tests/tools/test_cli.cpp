@@ -327,7 +327,7 @@ BOOST_AUTO_TEST_SUITE(cli_executables)
 
 BOOST_AUTO_TEST_CASE(every_executable_has_help) {
   for (const std::string name : {"dss_check", "dss_pairs", "dss_disabled_pairs", "dss_robot_timing",
-                                 "dss_scene_timing", "dss_plan"}) {
+                                 "dss_scene_timing", "dss_plan", "dss_decompose"}) {
     const Outcome o = runTool(name, {"--help"});
     BOOST_CHECK_MESSAGE(o.exit_code == 0, name << " --help: exit " << o.exit_code);
     BOOST_CHECK_MESSAGE(o.out.rfind("usage: " + name, 0) == 0,
@@ -402,6 +402,29 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_check", {"--workspace", "0,0,0,1,1,1,"}, "--workspace: expected 6");
   BOOST_CHECK_EQUAL(
       runTool("dss_plan", {"--robot", "/no/such/robot.urdf", "--request", "/no/such/request.yaml"})
+          .exit_code,
+      1);
+
+  // Mesh options (dss_check and dss_plan share them) and dss_decompose.
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--meshes", "voxels"},
+                      "--meshes: expected hull or decomposed, got 'voxels'");
+  checkToolUsageError("dss_plan", {"--decompose-tolerance", "0"}, "--decompose-tolerance");
+  checkToolUsageError("dss_plan", {"--decompose-max-pieces", "65"}, "--decompose-max-pieces");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--decompose-links", ","},
+                      "--decompose-links: empty link name");
+  BOOST_CHECK_EQUAL(
+      runTool("dss_check", {"--robot", kArm, "--random", "10", "--decompose-links", "no_such_link"})
+          .exit_code,
+      1);
+  checkToolUsageError("dss_decompose", {}, "give --robot or --mesh");
+  checkToolUsageError("dss_decompose", {"--mesh", "a.stl", "--links", "l1"},
+                      "--links needs --robot");
+  checkToolUsageError("dss_decompose", {"--mesh", "a.stl", "--scale", "0"}, "--scale");
+  checkToolUsageError("dss_decompose", {"--mesh", "a.stl", "--tolerance", "-1"}, "--tolerance");
+  BOOST_CHECK_EQUAL(
+      runTool("dss_decompose", {"--mesh", "/no/such/mesh.stl", "--cache", "none"}).exit_code, 1);
+  BOOST_CHECK_EQUAL(
+      runTool("dss_decompose", {"--robot", kArm, "--links", "no_such_link", "--cache", "none"})
           .exit_code,
       1);
 
