@@ -2,7 +2,9 @@
 // re-testing only the units its parent could not clear (see continuous_motion.h).
 #include "dss/checker/continuous_motion.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -12,14 +14,67 @@ namespace dss {
 
 namespace {
 
+// Rounding margin of the swept box stage, relative to the coordinates' size.
+constexpr double kBoxMargin = 1e-9;
+// A unit whose padding over a sub-motion exceeds this fraction of its element's radius (the
+// smaller one's, for a self pair) skips its swept test while the sub-motion can still be
+// halved: such tests mostly fail, and a failing test costs more than the halving.
+constexpr double kDeferRatio = 0.5;
+
 struct Interval {
   double ta, tb;
   std::size_t begin, end;  // its units: Scratch::work[begin, end)
+  int pa, pb;              // the link poses at ta and tb: Scratch::pool slots
+};
+// One element over the current sub-motion: its sphere's centre at both ends, the ball around
+// its swept sphere (centre `mid`,
+// radius `reach`: half the chord of its centre, its radius and its slot's padding), its shape
+// poses at both ends, and whether the clearance grid clears that ball (-1: not asked yet).
+struct ElementSweep {
+  std::uint64_t stamp = 0;  // the sub-motion these are for (Scratch::stamp)
+  Eigen::Vector3d c0, c1;   // its sphere's centre at both ends
+  Eigen::Vector3d mid;
+  double reach = 0.0;
+  Eigen::Isometry3d XS0, XS1;  // its shape poses at both ends, once has_poses
+  bool has_poses = false;
+  int grid = -1;
+};
+// A self pair's paddings in its frame over the current sub-motion.
+struct PairPads {
+  std::uint64_t stamp = 0;
+  double a = 0.0, b = 0.0;
+};
+// The inverse pose of a pair frame's link at both ends of the current sub-motion.
+struct FrameInverse {
+  std::uint64_t stamp = 0;
+  Eigen::Isometry3d X0, X1;
 };
 struct Scratch {
-  std::vector<Eigen::Isometry3d> XA, XB;
+  std::vector<ElementSweep> sweeps;         // per model element
+  std::vector<FrameInverse> frame_inverse;  // per robot link
+  std::vector<PairPads> pair_pads;          // per self pair
+  std::uint64_t stamp = 0;
+  // Link poses of sub-motion ends, one slot of num-links poses each, shared by the intervals
+  // that end there and released when none does.
+  std::vector<Eigen::Isometry3d> pool;
+  std::vector<int> refs, free_slots;
+  int acquire(std::size_t nl) {
+    if (free_slots.empty()) {
+      free_slots.push_back(int(refs.size()));
+      refs.push_back(0);
+      pool.resize(refs.size() * nl, Eigen::Isometry3d::Identity());
+    }
+    const int slot = free_slots.back();
+    free_slots.pop_back();
+    refs[std::size_t(slot)] = 1;
+    return slot;
+  }
+  void release(int slot) {
+    if (--refs[std::size_t(slot)] == 0) free_slots.push_back(slot);
+  }
   std::vector<double> pad, qa, qb;
-  std::vector<int> work;  // unit indices, a stack of lists (see clear())
+  std::vector<unsigned char> free_along;  // per self-pair table, for the current sub-motion
+  std::vector<int> work;                  // unit indices, a stack of lists (see clear())
   std::vector<Interval> stack;
 };
 Scratch& scratch() {
@@ -33,6 +88,34 @@ void slerpInto(const double* a, const double* b, double t, double* out) {
   const Eigen::Quaterniond qb = Eigen::Quaterniond(b[3], b[0], b[1], b[2]).normalized();
   const Eigen::Quaterniond r = qa.slerp(t, qb);  // Eigen's slerp takes the shorter arc
   out[0] = r.x(), out[1] = r.y(), out[2] = r.z(), out[3] = r.w();
+}
+
+// Grows [lo, hi] (in the frame F: x_F = Rf^T (x_W - o)) by the element box (centre bc, half
+// extents bh in the shape frame) at shape pose X.
+void growByBox(const Eigen::Matrix3d& Rf, const Eigen::Vector3d& o, const Eigen::Isometry3d& X,
+               const Eigen::Vector3d& bc, const Eigen::Vector3d& bh, Eigen::Vector3d* lo,
+               Eigen::Vector3d* hi) {
+  const Eigen::Matrix3d R = Rf.transpose() * X.linear();
+  const Eigen::Vector3d c = Rf.transpose() * (X * bc - o);
+  const Eigen::Vector3d e = R.cwiseAbs() * bh;
+  *lo = lo->cwiseMin(c - e);
+  *hi = hi->cwiseMax(c + e);
+}
+// The axis-aligned box in frame (Rf, o) around an element's local box at two poses.
+void sweptBox(const Eigen::Matrix3d& Rf, const Eigen::Vector3d& o, const Eigen::Isometry3d& X0,
+              const Eigen::Isometry3d& X1, const Eigen::Vector3d& bc, const Eigen::Vector3d& bh,
+              Eigen::Vector3d* lo, Eigen::Vector3d* hi) {
+  *lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  *hi = -*lo;
+  growByBox(Rf, o, X0, bc, bh, lo, hi);
+  growByBox(Rf, o, X1, bc, bh, lo, hi);
+}
+// [lo_a, hi_a] and [lo_b, hi_b] apart by more than gap along one axis (a NaN never is).
+bool boxesApart(const Eigen::Vector3d& lo_a, const Eigen::Vector3d& hi_a,
+                const Eigen::Vector3d& lo_b, const Eigen::Vector3d& hi_b, double gap) {
+  for (int k = 0; k < 3; ++k)
+    if (lo_b[k] - hi_a[k] > gap || lo_a[k] - hi_b[k] > gap) return true;
+  return false;
 }
 
 }  // namespace
@@ -60,12 +143,35 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
       for (int o : s.obstacles) units_.push_back({e, o, false});
   }
+  const RobotModel& robot = m.robot();
+  std::vector<char> computed(robot.links.size(), 0);
+  for (int l : m.kinematics().updatedLinks()) computed[std::size_t(l)] = 1;
+  auto ancestors = [&](int l) {
+    std::vector<int> out;
+    for (; l >= 0; l = robot.links[std::size_t(l)].parent_link) out.push_back(l);
+    return out;
+  };
   for (const auto& p : m.selfPairs()) {
     const auto& sa = m.slots()[p.a];
     const auto& sb = m.slots()[p.b];
+    // The lowest common ancestor; the world frame when its pose is not computed (it does not
+    // move: the joints above it are fixed or held).
+    const std::vector<int> up_a = ancestors(sa.link), up_b = ancestors(sb.link);
+    int lca = -1;
+    for (int l : up_a)
+      if (std::find(up_b.begin(), up_b.end(), l) != up_b.end()) {
+        lca = l;
+        break;
+      }
+    PairFrame f;
+    f.frame = lca >= 0 && computed[std::size_t(lca)] ? lca : -1;
+    f.chain_a = chainAbove(robot, sa.link, lca, sa.center_L.norm() + sa.radius, m.held());
+    f.chain_b = chainAbove(robot, sb.link, lca, sb.center_L.norm() + sb.radius, m.held());
+    const int pair_index = int(pairs_.size());
+    pairs_.push_back(std::move(f));
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea)
       for (int eb = sb.first_element; eb < sb.first_element + sb.num_elements; ++eb)
-        units_.push_back({ea, eb, true});
+        units_.push_back({ea, eb, true, p.table, pair_index});
   }
 }
 
@@ -78,35 +184,107 @@ void ContinuousMotionChecker::paddings(const double* qa, const double* qb, doubl
 
 bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* XA,
                                         const Eigen::Isometry3d* XB, const double* pad,
-                                        std::uint64_t* tests) const {
+                                        bool may_defer, std::uint64_t* tests) const {
   const CollisionModel& m = checker_->model();
   const DssCheckerSettings& set = checker_->settings();
   const auto& el = m.elements();
+  Scratch& sc = scratch();
+  // An element's sphere and shape poses over the sub-motion, computed once per sub-motion.
+  auto swept = [&](int e) -> const ElementSweep& {
+    ElementSweep& s = sc.sweeps[std::size_t(e)];
+    if (s.stamp == sc.stamp) return s;
+    const CollisionModel::Element& x = el[std::size_t(e)];
+    const Eigen::Isometry3d& X0 = XA[x.link];
+    const Eigen::Isometry3d& X1 = XB[x.link];
+    s.c0 = X0 * x.center_L, s.c1 = X1 * x.center_L;
+    s.mid = 0.5 * (s.c0 + s.c1);
+    s.reach = 0.5 * (s.c1 - s.c0).norm() + x.radius + pad[x.slot];
+    s.has_poses = false;
+    s.grid = -1;
+    s.stamp = sc.stamp;
+    return s;
+  };
+  // ... and its shape poses, when a stage after the spheres needs them.
+  auto posed = [&](int e) -> const ElementSweep& {
+    ElementSweep& s = sc.sweeps[std::size_t(e)];
+    if (!s.has_poses) {
+      const CollisionModel::Element& x = el[std::size_t(e)];
+      s.XS0 = XA[x.link] * x.source->X_LS;
+      s.XS1 = XB[x.link] * x.source->X_LS;
+      s.has_poses = true;
+    }
+    return s;
+  };
   const auto& ea = el[u.a];
-  const Eigen::Isometry3d& XA0 = XA[ea.link];
-  const Eigen::Isometry3d& XA1 = XB[ea.link];
-  const Eigen::Vector3d a0 = XA0 * ea.center_L, a1 = XA1 * ea.center_L;
+  const ElementSweep& sa = swept(u.a);
   if (!u.self) {
     const double p = pad[ea.slot] + set.scene_padding;
-    const double r = 0.5 * (a1 - a0).norm() + ea.radius + p;
-    if (detail::sqDistPointAabb(0.5 * (a0 + a1), m.obstacleBoxes()[u.b]) > r * r) return true;
+    const double r = sa.reach + set.scene_padding;
+    // One clearance-grid lookup clears the element against every obstacle at once.
+    ElementSweep& sm = sc.sweeps[std::size_t(u.a)];
+    if (sm.grid < 0) sm.grid = m.clearanceGrid().clear(sa.mid, r) ? 1 : 0;
+    if (sm.grid) return true;
+    if (detail::sqDistPointAabb(sa.mid, m.obstacleBoxes()[u.b]) > r * r) return true;
+    // The element's local box at both ends, bounded in the obstacle's box frame, grown by the
+    // padding: apart along one of the frame's axes, the swept hull is apart too.
+    const Obb& ob = m.obstacleObbs()[u.b];
+    posed(u.a);
+    Eigen::Vector3d lo, hi;
+    sweptBox(ob.R, ob.c, sa.XS0, sa.XS1, ea.box_center_S, ea.box_half, &lo, &hi);
+    const double margin = kBoxMargin * (1.0 + ob.c.norm() + ob.h.norm() + r);
+    if (boxesApart(lo, hi, -ob.h, ob.h, p + margin)) return true;
+    if (may_defer && p > kDeferRatio * ea.radius) return false;
     ++*tests;
     const Obstacle& o = m.scene().obstacles[u.b];
-    return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p,
-                           o.shape, o.X_WO, set.options)
+    return !intersectSwept(ea.source->shape, sa.XS0, sa.XS1, p, o.shape, o.X_WO, set.options)
                 .intersect;
   }
   const auto& eb = el[u.b];
-  const Eigen::Isometry3d& XB0 = XA[eb.link];
-  const Eigen::Isometry3d& XB1 = XB[eb.link];
-  const Eigen::Vector3d b0 = XB0 * eb.center_L, b1 = XB1 * eb.center_L;
-  const double p = pad[ea.slot] + pad[eb.slot] + set.self_padding;
+  // In the pair's frame F: poses relative to F at both ends, paddings from the joints below F.
+  const PairFrame& f = pairs_[std::size_t(u.pair)];
+  PairPads& pp = sc.pair_pads[std::size_t(u.pair)];
+  if (pp.stamp != sc.stamp) {
+    const auto padOf = [](const MotionBound& b) {
+      return 0.5 * b.length * std::min(1.0, b.turn) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
+    };
+    pp.a = padOf(motionBound(f.chain_a, sc.qa.data(), sc.qb.data()));
+    pp.b = padOf(motionBound(f.chain_b, sc.qa.data(), sc.qb.data()));
+    pp.stamp = sc.stamp;
+  }
+  // Sphere centres in F at both ends (F's inverse computed once per sub-motion), then the
+  // shape poses in F for the stages after the spheres.
+  const ElementSweep& sb = swept(u.b);
+  const Eigen::Isometry3d* F0 = nullptr;
+  const Eigen::Isometry3d* F1 = nullptr;
+  if (f.frame >= 0) {
+    FrameInverse& fi = sc.frame_inverse[std::size_t(f.frame)];
+    if (fi.stamp != sc.stamp) {
+      fi.X0 = XA[f.frame].inverse();
+      fi.X1 = XB[f.frame].inverse();
+      fi.stamp = sc.stamp;
+    }
+    F0 = &fi.X0, F1 = &fi.X1;
+  }
+  const double p = pp.a + pp.b + set.self_padding;
+  const Eigen::Vector3d a0 = F0 ? *F0 * sa.c0 : sa.c0, a1 = F1 ? *F1 * sa.c1 : sa.c1;
+  const Eigen::Vector3d b0 = F0 ? *F0 * sb.c0 : sb.c0, b1 = F1 ? *F1 * sb.c1 : sb.c1;
   const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + ea.radius + eb.radius + p;
   if ((0.5 * (a0 + a1) - 0.5 * (b0 + b1)).squaredNorm() > r * r) return true;
+  posed(u.a);
+  posed(u.b);
+  const Eigen::Isometry3d YA0 = F0 ? *F0 * sa.XS0 : sa.XS0, YA1 = F1 ? *F1 * sa.XS1 : sa.XS1;
+  const Eigen::Isometry3d YB0 = F0 ? *F0 * sb.XS0 : sb.XS0, YB1 = F1 ? *F1 * sb.XS1 : sb.XS1;
+  // Both elements' local boxes at both ends, bounded in a's shape frame at the start.
+  const Eigen::Matrix3d& Rf = YA0.linear();
+  const Eigen::Vector3d& of = YA0.translation();
+  Eigen::Vector3d lo_a, hi_a, lo_b, hi_b;
+  sweptBox(Rf, of, YA0, YA1, ea.box_center_S, ea.box_half, &lo_a, &hi_a);
+  sweptBox(Rf, of, YB0, YB1, eb.box_center_S, eb.box_half, &lo_b, &hi_b);
+  const double margin = kBoxMargin * (1.0 + of.norm() + r);
+  if (boxesApart(lo_a, hi_a, lo_b, hi_b, p + margin)) return true;
+  if (may_defer && p > kDeferRatio * std::min(ea.radius, eb.radius)) return false;
   ++*tests;
-  return !intersectSwept(ea.source->shape, XA0 * ea.source->X_LS, XA1 * ea.source->X_LS, p,
-                         eb.source->shape, XB0 * eb.source->X_LS, XB1 * eb.source->X_LS,
-                         set.options)
+  return !intersectSwept(ea.source->shape, YA0, YA1, p, eb.source->shape, YB0, YB1, set.options)
               .intersect;
 }
 
@@ -138,13 +316,23 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   const std::size_t n = m.robot().numActiveJoints();
   Scratch& sc = scratch();
   const std::size_t nl = m.robot().links.size();
-  if (sc.XA.size() < nl) sc.XA.resize(nl), sc.XB.resize(nl);
+  if (sc.pool.size() != 0 && sc.pool.size() % nl != 0) sc.pool.clear(), sc.refs.clear();
+  if (sc.pool.size() / nl != sc.refs.size()) sc.pool.clear(), sc.refs.clear();
+  sc.free_slots.clear();
+  for (std::size_t k = 0; k < sc.refs.size(); ++k) sc.refs[k] = 0, sc.free_slots.push_back(int(k));
   if (sc.pad.size() < m.slots().size()) sc.pad.resize(m.slots().size());
+  if (sc.sweeps.size() < m.elements().size()) sc.sweeps.resize(m.elements().size());
+  if (sc.pair_pads.size() < pairs_.size()) sc.pair_pads.resize(pairs_.size());
+  if (sc.frame_inverse.size() < nl) sc.frame_inverse.resize(nl);
   if (sc.qa.size() < n) sc.qa.resize(n), sc.qb.resize(n);
+  if (sc.free_along.size() < m.selfTables().size()) sc.free_along.resize(m.selfTables().size());
   sc.work.resize(units_.size());
   for (std::size_t u = 0; u < units_.size(); ++u) sc.work[u] = static_cast<int>(u);
   sc.stack.clear();
-  sc.stack.push_back({0.0, 1.0, 0, units_.size()});
+  const int p0 = sc.acquire(nl), p1 = sc.acquire(nl);
+  m.kinematics().computeLinkPoses(q0, sc.pool.data() + std::size_t(p0) * nl);
+  m.kinematics().computeLinkPoses(q1, sc.pool.data() + std::size_t(p1) * nl);
+  sc.stack.push_back({0.0, 1.0, 0, units_.size(), p0, p1});
   double* qa = sc.qa.data();
   double* qb = sc.qb.data();
   bool first = true;
@@ -162,12 +350,23 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       slerpInto(q0 + a, q1 + a, iv.ta, qa + a);
       slerpInto(q0 + a, q1 + a, iv.tb, qb + a);
     }
-    m.kinematics().computeLinkPoses(qa, sc.XA.data());
-    m.kinematics().computeLinkPoses(qb, sc.XB.data());
+    const Eigen::Isometry3d* XA = sc.pool.data() + std::size_t(iv.pa) * nl;
+    const Eigen::Isometry3d* XB = sc.pool.data() + std::size_t(iv.pb) * nl;
     paddings(qa, qb, sc.pad.data());
+    ++sc.stamp;  // every element's sweep is stale
+    bool tables_read = false;
+    const bool may_defer = iv.tb - iv.ta > min_fraction_;
     for (std::size_t w = iv.begin; w < iv.end; ++w) {
       const int u = sc.work[w];
-      if (unitClear(units_[u], sc.XA.data(), sc.XB.data(), sc.pad.data(), &tests))
+      const Unit& unit = units_[u];
+      if (unit.table >= 0) {
+        if (!tables_read) {
+          m.selfTables().freeAlong(qa, qb, checker_->settings().self_padding, sc.free_along.data());
+          tables_read = true;
+        }
+        if (sc.free_along[std::size_t(unit.table)]) continue;  // certified over [ta, tb]
+      }
+      if (unitClear(unit, XA, XB, sc.pad.data(), may_defer, &tests))
         continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the
       // halves' list (near a contact it fails again at once), followed by the units not yet
@@ -180,7 +379,11 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       }
       break;
     }
-    if (sc.work.size() == iv.end) continue;  // every unit cleared over [ta, tb]
+    if (sc.work.size() == iv.end) {  // every unit cleared over [ta, tb]
+      sc.release(iv.pa);
+      sc.release(iv.pb);
+      continue;
+    }
     if (iv.tb - iv.ta <= min_fraction_) {
       *last = iv.ta;
       return false;
@@ -188,12 +391,17 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
     for (int a : balls_) slerpInto(q0 + a, q1 + a, tm, qa + a);
-    if (checker_->collides(qa)) {  // a colliding state on the motion: done
+    const int pm = sc.acquire(nl);  // may move the pool: XA and XB are not used below
+    Eigen::Isometry3d* XM = sc.pool.data() + std::size_t(pm) * nl;
+    m.kinematics().computeLinkPoses(qa, XM);
+    if (checker_->collidesWithPoses(qa, XM)) {  // a colliding state on the motion: done
       *last = iv.ta;
       return false;
     }
-    sc.stack.push_back({tm, iv.tb, iv.end, sc.work.size()});
-    sc.stack.push_back({iv.ta, tm, iv.end, sc.work.size()});
+    // The halves take over the parent's ends; the midpoint serves both.
+    sc.refs[std::size_t(pm)] = 2;
+    sc.stack.push_back({tm, iv.tb, iv.end, sc.work.size(), pm, iv.pb});
+    sc.stack.push_back({iv.ta, tm, iv.end, sc.work.size(), iv.pa, pm});
   }
   return true;
 }

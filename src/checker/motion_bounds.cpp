@@ -89,6 +89,10 @@ MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, c
   for (const ChainTerm& t : chain) {
     if (t.active < 0) continue;
     if (t.ball) {
+      const double* a = q0 + t.active;
+      const double* c = q1 + t.active;
+      // The same quaternion at both ends does not turn (a multi-DOF joint the motion holds).
+      if (a[0] == c[0] && a[1] == c[1] && a[2] == c[2] && a[3] == c[3]) continue;
       const double angle = quaternionAngle(q0 + t.active, q1 + t.active);
       b.length += angle * t.reach;
       b.turn += angle;

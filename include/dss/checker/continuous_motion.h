@@ -17,10 +17,23 @@
 // Work is kept per unit (element vs obstacle, element vs element of a self pair): a
 // sub-motion tests its units in order until one is not cleared; that unit and the ones not yet
 // tested are left to its two halves (the failing one first), while the units it cleared are
-// never tested again inside it. A sub-motion with units left is halved, left half first, after
-// checking its midpoint state: a colliding midpoint ends the search at once (the motion is
-// invalid). A unit still not cleared at the minimum fraction makes the motion invalid. For self
-// pairs both links are swept, ignoring the time correlation, which is conservative.
+// never tested again inside it. A unit goes through cheap stages before its swept test:
+//  - robot vs scene: the ball around the element's swept sphere against the clearance grid
+//    (one lookup clears the element against every obstacle) and the obstacle's box; then the
+//    element's local box at both ends, bounded in the obstacle box's frame and grown by the
+//    padding, against that box;
+//  - self pairs: a pair with a self-pair table is cleared when every table cell its joint
+//    values cross over the sub-motion is certified free. Otherwise both links are swept in the
+//    frame of their lowest common ancestor: the joints above it move both links together and
+//    add nothing to their relative motion, so only the joints in between enter the paddings
+//    (the time correlation of the two links is ignored, which is conservative); their swept
+//    spheres, then their local boxes bounded in the first element's frame.
+// A unit whose padding still exceeds half its element's radius skips the swept test while the
+// sub-motion can be halved (such tests mostly fail, and cost more than the halving). A
+// sub-motion with units left is halved, left half first, after checking its midpoint state
+// with the poses computed for the halves' ends: a colliding midpoint ends the search at once
+// (the motion is invalid). A unit still not cleared at the minimum fraction makes the motion
+// invalid.
 #pragma once
 
 #include <atomic>
@@ -63,14 +76,25 @@ class ContinuousMotionChecker {
   struct Unit {
     int a = -1, b = -1;
     bool self = false;
+    int table = -1;  ///< self: the pair's self-pair table, or -1
+    int pair = -1;   ///< self: index into pairs_
   };
+  // A self pair of slots, seen from the lowest link above both whose pose the kinematics
+  // compute (`frame`; -1: the world, when that link never moves): only the joints between it
+  // and each slot move the slot there.
+  struct PairFrame {
+    int frame = -1;
+    std::vector<ChainTerm> chain_a, chain_b;
+  };
+  /// `may_defer`: the sub-motion can still be halved (see kDeferRatio in the source).
   bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB,
-                 const double* pad, std::uint64_t* tests) const;
+                 const double* pad, bool may_defer, std::uint64_t* tests) const;
 
   std::shared_ptr<const DssChecker> checker_;
   double min_fraction_;
   std::vector<std::vector<ChainTerm>> chains_;  ///< per slot: the joints that move it
   std::vector<Unit> units_;                     ///< every unit of the model, in sweep order
+  std::vector<PairFrame> pairs_;                ///< per self pair of the model
   std::vector<int> balls_;                      ///< the first state value of each ball joint
   mutable std::atomic<std::uint64_t> sub_motions_{0}, unit_tests_{0};
 };

@@ -12,6 +12,7 @@
 // apart than its padding + r.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -25,6 +26,12 @@ struct DssCheckerSettings {
   double scene_padding = 0.0;  ///< "free" means distance > padding to every obstacle
   double self_padding = 0.0;
   bool obb_stage = true;  ///< the sweep's oriented-box stage (and inner balls)
+  /// Before the narrow phase of a pair, try the plane that separated the same pair in this
+  /// thread's last disjoint answer (separatedAlong: two supports, no search). Consecutive
+  /// queries on nearby states -- the states of a motion -- are mostly decided there. The
+  /// answers are those of the narrow phase: the plane proves "apart" with a rounding margin
+  /// or the narrow phase runs.
+  bool witnesses = true;
   /// clearance(): the returned lower bound is within this of the true clearance (metres), up
   /// to clearance_max (returned when every pair is at least that far apart).
   double clearance_tolerance = 1e-3;
@@ -44,6 +51,11 @@ class DssChecker : public StateChecker {
   /// model's obstacle pruning guarantees).
   double clearance(const double* q) const;
 
+  /// The check of state q (counted as check() counts) with its link poses already computed by
+  /// model().kinematics() into X_WL: the continuous motion check reuses the poses of its
+  /// sub-motions' ends. True for a colliding or invalid state.
+  bool collidesWithPoses(const double* q, const Eigen::Isometry3d* X_WL) const;
+
  private:
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
@@ -52,6 +64,7 @@ class DssChecker : public StateChecker {
                   double scene_padding, double self_padding) const;
 
   Settings settings_;
+  std::uint64_t serial_;  ///< tells this checker's per-thread witness store from others'
 };
 
 }  // namespace dss

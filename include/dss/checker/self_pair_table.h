@@ -123,6 +123,16 @@ class SelfPairTables {
   bool read(const double* q, bool held_match, double self_padding, unsigned char* skip,
             bool colliding_cells = true) const;
 
+  /// For every table, whether it certifies its pair free at this self padding at every state
+  /// of the straight motion qa -> qb (active joint values): free_along[t] is set when the
+  /// motion, cut into pieces that cross at most one cell boundary per variable, finds every cell
+  /// of each piece's index rectangle (widened by a rounding margin) free. Unset for a
+  /// continuous variable, a value outside the range, a held joint away from the table's value,
+  /// or a motion of more than kMaxPieces pieces. Tables sharing a grid are walked together.
+  void freeAlong(const double* qa, const double* qb, double self_padding,
+                 unsigned char* free_along) const;
+  static constexpr int kMaxPieces = 64;
+
  private:
   struct Group {
     int first = 0;  ///< its tables: tables_[first, first + count), on the grid of the first
