@@ -131,6 +131,58 @@ std::size_t checkAllCells(const std::shared_ptr<const dss::CollisionModel>& mode
   return checked;
 }
 
+// SelfPairTables::freeAlong on seeded random straight motions of the group (lengths from 0 to
+// a third of the range): a table that certifies a motion must find its cell free at 400
+// states along it, ends included; some motions are certified, some not; a motion that leaves
+// a table's range is never certified for it.
+void checkFreeAlong(const dss::CollisionModel& m, std::uint64_t seed) {
+  const dss::SelfPairTables& tables = m.selfTables();
+  BOOST_REQUIRE(tables.size() > 0u);
+  std::mt19937_64 rng(seed);
+  std::vector<double> q0 = m.held(), q1 = m.held(), q = m.held();
+  std::vector<unsigned char> flags(tables.size());
+  std::size_t certified = 0, refused = 0, samples = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const double scale = std::uniform_real_distribution<double>(0.0, 1.0 / 3.0)(rng);
+    for (int a : m.groupActive()) {
+      const auto& j = m.robot().joints[m.robot().active_joints[a]];
+      std::uniform_real_distribution<double> v(j.limits.lower, j.limits.upper);
+      q0[a] = v(rng);
+      q1[a] = q0[a] + scale * (v(rng) - q0[a]);
+    }
+    tables.freeAlong(q0.data(), q1.data(), 0.0, flags.data());
+    for (std::size_t t = 0; t < tables.size(); ++t) {
+      if (!flags[t]) {
+        ++refused;
+        continue;
+      }
+      ++certified;
+      for (int i = 0; i <= 400; ++i) {
+        const double s = i / 400.0;
+        for (std::size_t a = 0; a < q.size(); ++a) q[a] = q0[a] + s * (q1[a] - q0[a]);
+        ++samples;
+        BOOST_TEST((tables.tables()[t].cell(q.data()) == dss::SelfPairTable::kFree),
+                   "table " << t << ", motion " << k << ", s = " << s);
+      }
+    }
+    // The same motion pushed beyond a table variable's range: refused for that table.
+    if (k % 10 == 0) {
+      const dss::SelfPairTable& t0 = tables.tables()[0];
+      std::vector<double> out = q1;
+      out[std::size_t(t0.var[0])] = t0.hi[0] + 0.01;
+      tables.freeAlong(q0.data(), out.data(), 0.0, flags.data());
+      BOOST_TEST(!flags[0]);
+    }
+  }
+  // A larger self padding than the tables certify: nothing is certified.
+  tables.freeAlong(q0.data(), q0.data(), tables.padding() + 0.01, flags.data());
+  for (unsigned char f : flags) BOOST_TEST(!f);
+  BOOST_TEST(certified > 100u);
+  BOOST_TEST(refused > 100u);
+  BOOST_TEST_MESSAGE("freeAlong: " << certified << " table-motions certified (" << samples
+                                   << " states checked), " << refused << " not");
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(self_pair_tables)
@@ -212,6 +264,23 @@ BOOST_AUTO_TEST_CASE(own_arm_certified_cells_are_free) {
   BOOST_TEST_MESSAGE("dss_arm7: " << p.model->summary());
   const std::size_t checked = checkAllCells(p.model, 0.0);
   BOOST_TEST_MESSAGE("dss_arm7: " << checked << " element pairs in certified cells checked");
+}
+
+BOOST_AUTO_TEST_CASE(own_arm_tables_certify_motions_only_through_free_cells) {
+  const auto robot = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
+  const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
+  const dss::ModelSetup p = dss::setupModel(robot, dss::loadScene(kArm + "/scenes/shelf.yaml"),
+                                            req.group_name, req.startState());
+  checkFreeAlong(*p.model, 31);
+}
+
+BOOST_AUTO_TEST_CASE(panda_tables_certify_motions_only_through_free_cells, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf"));
+  const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
+  const auto req = dss::loadPlanRequestYaml(kMbm + "/table_pick/request0001.yaml");
+  const dss::ModelSetup p = dss::setupModel(
+      robot, dss::loadScene(kMbm + "/table_pick/scene0001.yaml"), req.group_name, req.startState());
+  checkFreeAlong(*p.model, 32);
 }
 
 BOOST_AUTO_TEST_CASE(panda_certified_cells_are_free_and_tables_change_no_answer, DSS_NEEDS_SHARED) {
