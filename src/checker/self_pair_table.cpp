@@ -191,6 +191,20 @@ SelfPairTables::SelfPairTables(std::vector<SelfPairTable> tables, double padding
       for (std::size_t c = 0; c < cells.size(); ++c)
         g.packed[c] |= static_cast<std::uint8_t>(cells[c] << (2 * k));
     }
+    // The coarse grid: a block's byte keeps the free bits common to all its cells.
+    const SelfPairTable& t0 = tables_[std::size_t(g.first)];
+    const int nv = t0.num_vars;
+    for (int k = 0; k < nv; ++k) g.blocks[k] = (t0.cells[k] + kBlock - 1) / kBlock;
+    g.coarse.assign(std::size_t(g.blocks[0]) * std::size_t(g.blocks[1]), 0x55u);
+    for (int i = 0; i < t0.cells[0]; ++i)
+      for (int j = 0; j < (nv == 2 ? t0.cells[1] : 1); ++j) {
+        const std::size_t c =
+            nv == 2 ? std::size_t(i) * std::size_t(t0.cells[1]) + std::size_t(j) : std::size_t(i);
+        const std::size_t b =
+            nv == 2 ? std::size_t(i / kBlock) * std::size_t(g.blocks[1]) + std::size_t(j / kBlock)
+                    : std::size_t(i / kBlock);
+        g.coarse[b] &= static_cast<std::uint8_t>(free(g.packed[c]));
+      }
     groups_.push_back(std::move(g));
   }
 }
@@ -221,6 +235,44 @@ bool SelfPairTables::read(const double* q, bool held_match, double self_padding,
   return false;
 }
 
+unsigned SelfPairTables::walkFree(const Group& g, const double* a, const double* b, bool fine,
+                                  unsigned mask) const {
+  const SelfPairTable& tb = tables_[std::size_t(g.first)];
+  const int nv = tb.num_vars;
+  int count[2] = {1, 1};
+  double inv[2] = {0, 0};
+  int pieces = 1;
+  for (int k = 0; k < nv; ++k) {
+    count[k] = fine ? tb.cells[k] : g.blocks[k];
+    inv[k] = fine ? tb.inv_width[k] : tb.inv_width[k] / kBlock;
+    const double span = std::abs(b[k] - a[k]) * inv[k];
+    if (!(span < kMaxPieces)) return 0;
+    pieces = std::max(pieces, int(span) + 1);
+  }
+  const std::vector<std::uint8_t>& bytes = fine ? g.packed : g.coarse;
+  // The cells of [v0, v1] (sorted) along variable k, widened by a margin of 1e-9 cell.
+  auto cellRange = [&](int k, double v0, double v1, int* i0, int* i1) {
+    const double x0 = (std::min(v0, v1) - tb.lo[k]) * inv[k] - 1e-9;
+    const double x1 = (std::max(v0, v1) - tb.lo[k]) * inv[k] + 1e-9;
+    *i0 = std::clamp(int(std::floor(x0)), 0, count[k] - 1);
+    *i1 = std::clamp(int(std::floor(x1)), 0, count[k] - 1);
+  };
+  for (int p = 0; p < pieces && mask; ++p) {
+    const double s0 = double(p) / pieces, s1 = double(p + 1) / pieces;
+    int lo_i[2] = {0, 0}, hi_i[2] = {0, 0};
+    for (int k = 0; k < nv; ++k)
+      cellRange(k, a[k] + s0 * (b[k] - a[k]), a[k] + s1 * (b[k] - a[k]), &lo_i[k], &hi_i[k]);
+    for (int i = lo_i[0]; i <= hi_i[0]; ++i)
+      for (int j = lo_i[1]; j <= hi_i[1]; ++j) {
+        const std::uint8_t byte =
+            bytes[nv == 2 ? std::size_t(i) * std::size_t(count[1]) + std::size_t(j)
+                          : std::size_t(i)];
+        mask &= fine ? free(byte) : byte;
+      }
+  }
+  return mask;
+}
+
 void SelfPairTables::freeAlong(const double* qa, const double* qb, double self_padding,
                                unsigned char* free_along) const {
   std::fill(free_along, free_along + tables_.size(), 0);
@@ -229,40 +281,23 @@ void SelfPairTables::freeAlong(const double* qa, const double* qb, double self_p
     const SelfPairTable& tb = tables_[std::size_t(g.first)];
     const int nv = tb.num_vars;
     double a[2], b[2];
-    int pieces = 1;
     bool ok = true;
     for (int k = 0; k < nv && ok; ++k) {
       a[k] = qa[tb.var[k]], b[k] = qb[tb.var[k]];
-      const double span = std::abs(b[k] - a[k]) * tb.inv_width[k];
       ok = !tb.wrap[k] && a[k] >= tb.lo[k] && a[k] <= tb.hi[k] && b[k] >= tb.lo[k] &&
-           b[k] <= tb.hi[k] && span < kMaxPieces;
-      if (ok) pieces = std::max(pieces, int(span) + 1);
+           b[k] <= tb.hi[k];
     }
-    if (!ok || pieces > kMaxPieces) continue;
+    if (!ok) continue;
     // Tables of the group whose held joints match at both ends, as a mask of their free bits.
     unsigned mask = 0;
     for (int k = 0; k < g.count; ++k)
       if (tables_[std::size_t(g.first + k)].heldMatch(qa) &&
           tables_[std::size_t(g.first + k)].heldMatch(qb))
         mask |= 1u << (2 * k);
-    // The cells of [v0, v1] (sorted) along variable k, widened by a margin of 1e-9 cell.
-    auto cellRange = [&](int k, double v0, double v1, int* i0, int* i1) {
-      const double x0 = (std::min(v0, v1) - tb.lo[k]) * tb.inv_width[k] - 1e-9;
-      const double x1 = (std::max(v0, v1) - tb.lo[k]) * tb.inv_width[k] + 1e-9;
-      *i0 = std::clamp(int(std::floor(x0)), 0, tb.cells[k] - 1);
-      *i1 = std::clamp(int(std::floor(x1)), 0, tb.cells[k] - 1);
-    };
-    for (int p = 0; p < pieces && mask; ++p) {
-      const double s0 = double(p) / pieces, s1 = double(p + 1) / pieces;
-      int lo_i[2] = {0, 0}, hi_i[2] = {0, 0};
-      for (int k = 0; k < nv; ++k)
-        cellRange(k, a[k] + s0 * (b[k] - a[k]), a[k] + s1 * (b[k] - a[k]), &lo_i[k], &hi_i[k]);
-      for (int i = lo_i[0]; i <= hi_i[0]; ++i)
-        for (int j = lo_i[1]; j <= hi_i[1]; ++j)
-          mask &= free(g.packed[nv == 2 ? std::size_t(i) * std::size_t(tb.cells[1]) + std::size_t(j)
-                                        : std::size_t(i)]);
-    }
-    for (int k = 0; k < g.count; ++k) free_along[g.first + k] = (mask >> (2 * k)) & 1u;
+    // Blocks first; the cells only for the tables some block along the way does not clear.
+    const unsigned coarse = walkFree(g, a, b, false, mask);
+    const unsigned fine = coarse == mask ? mask : coarse | walkFree(g, a, b, true, mask & ~coarse);
+    for (int k = 0; k < g.count; ++k) free_along[g.first + k] = (fine >> (2 * k)) & 1u;
   }
 }
 

@@ -138,7 +138,16 @@ class SelfPairTables {
     int first = 0;  ///< its tables: tables_[first, first + count), on the grid of the first
     int count = 0;  ///< at most 4
     std::vector<std::uint8_t> packed;
+    /// kBlock x kBlock cells per byte (kBlock per byte in 1D): the free bits of the tables
+    /// free in every cell of the block, for freeAlong's first, coarse walk.
+    int blocks[2] = {1, 1};
+    std::vector<std::uint8_t> coarse;
   };
+  static constexpr int kBlock = 8;
+  /// The free bits of group g over motion qa -> qb walked on its grid (fine) or on its
+  /// blocks, for the tables in `mask`.
+  unsigned walkFree(const Group& g, const double* a, const double* b, bool fine,
+                    unsigned mask) const;
   /// Of a packed byte: bit 2m + 1 set when table m's cell is kColliding (2), bit 2m when kFree.
   static unsigned colliding(unsigned byte) { return byte & 0xAAu & ~(byte << 1); }
   static unsigned free(unsigned byte) { return byte & 0x55u & ~(byte >> 1); }
