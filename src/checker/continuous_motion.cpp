@@ -82,13 +82,6 @@ Scratch& scratch() {
   return s;
 }
 
-// The unit quaternion at t of the slerp from a to b (x, y, z, w) along the shorter arc.
-void slerpInto(const double* a, const double* b, double t, double* out) {
-  const Eigen::Quaterniond qa = Eigen::Quaterniond(a[3], a[0], a[1], a[2]).normalized();
-  const Eigen::Quaterniond qb = Eigen::Quaterniond(b[3], b[0], b[1], b[2]).normalized();
-  const Eigen::Quaterniond r = qa.slerp(t, qb);  // Eigen's slerp takes the shorter arc
-  out[0] = r.x(), out[1] = r.y(), out[2] = r.z(), out[3] = r.w();
-}
 
 // Grows [lo, hi] (in the frame F: x_F = Rf^T (x_W - o)) by the element box (centre bc, half
 // extents bh in the shape frame) at shape pose X.
@@ -146,23 +139,12 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
   const RobotModel& robot = m.robot();
   std::vector<char> computed(robot.links.size(), 0);
   for (int l : m.kinematics().updatedLinks()) computed[std::size_t(l)] = 1;
-  auto ancestors = [&](int l) {
-    std::vector<int> out;
-    for (; l >= 0; l = robot.links[std::size_t(l)].parent_link) out.push_back(l);
-    return out;
-  };
   for (const auto& p : m.selfPairs()) {
     const auto& sa = m.slots()[p.a];
     const auto& sb = m.slots()[p.b];
-    // The lowest common ancestor; the world frame when its pose is not computed (it does not
-    // move: the joints above it are fixed or held).
-    const std::vector<int> up_a = ancestors(sa.link), up_b = ancestors(sb.link);
-    int lca = -1;
-    for (int l : up_a)
-      if (std::find(up_b.begin(), up_b.end(), l) != up_b.end()) {
-        lca = l;
-        break;
-      }
+    // The world frame when the common ancestor's pose is not computed (it does not move: the
+    // joints above it are fixed or held).
+    const int lca = lowestCommonAncestor(robot, sa.link, sb.link);
     PairFrame f;
     f.frame = lca >= 0 && computed[std::size_t(lca)] ? lca : -1;
     f.chain_a = chainAbove(robot, sa.link, lca, sa.center_L.norm() + sa.radius, m.held());
@@ -347,8 +329,8 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       qb[i] = q0[i] + iv.tb * (q1[i] - q0[i]);
     }
     for (int a : balls_) {  // quaternions: slerp along the shorter arc, as OMPL's SO(3)
-      slerpInto(q0 + a, q1 + a, iv.ta, qa + a);
-      slerpInto(q0 + a, q1 + a, iv.tb, qb + a);
+      slerpQuaternion(q0 + a, q1 + a, iv.ta, qa + a);
+      slerpQuaternion(q0 + a, q1 + a, iv.tb, qb + a);
     }
     const Eigen::Isometry3d* XA = sc.pool.data() + std::size_t(iv.pa) * nl;
     const Eigen::Isometry3d* XB = sc.pool.data() + std::size_t(iv.pb) * nl;
@@ -390,7 +372,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
-    for (int a : balls_) slerpInto(q0 + a, q1 + a, tm, qa + a);
+    for (int a : balls_) slerpQuaternion(q0 + a, q1 + a, tm, qa + a);
     const int pm = sc.acquire(nl);  // may move the pool: XA and XB are not used below
     Eigen::Isometry3d* XM = sc.pool.data() + std::size_t(pm) * nl;
     m.kinematics().computeLinkPoses(qa, XM);

@@ -1,6 +1,8 @@
 // Kinematic motion bounds (see motion_bounds.h).
 #include "dss/checker/motion_bounds.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -63,6 +65,20 @@ std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, d
   }
   if (reach_at_stop) *reach_at_stop = reach;
   return out;
+}
+
+void slerpQuaternion(const double* a, const double* b, double t, double* out) {
+  const Eigen::Quaterniond qa = Eigen::Quaterniond(a[3], a[0], a[1], a[2]).normalized();
+  const Eigen::Quaterniond qb = Eigen::Quaterniond(b[3], b[0], b[1], b[2]).normalized();
+  const Eigen::Quaterniond r = qa.slerp(t, qb);  // Eigen's slerp takes the shorter arc
+  out[0] = r.x(), out[1] = r.y(), out[2] = r.z(), out[3] = r.w();
+}
+
+int lowestCommonAncestor(const RobotModel& robot, int a, int b) {
+  for (int x = a; x >= 0; x = robot.links[std::size_t(x)].parent_link)
+    for (int y = b; y >= 0; y = robot.links[std::size_t(y)].parent_link)
+      if (x == y) return x;
+  return -1;
 }
 
 double quaternionAngle(const double* a, const double* b) {

@@ -51,9 +51,17 @@ struct ChainTerm {
 std::vector<ChainTerm> chainAbove(const RobotModel& robot, int link, int stop, double radius,
                                   const std::vector<double>& held, double* reach_at_stop = nullptr);
 
+/// The lowest link above (or equal to) both `a` and `b`: joints above it move both rigidly
+/// together. -1 when they share no link (never in a tree).
+int lowestCommonAncestor(const RobotModel& robot, int a, int b);
+
 /// The rotation angle between two quaternions (x, y, z, w; not necessarily unit), rounded up:
 /// the angle a slerp along the shorter arc turns by. Infinity when one has no direction.
 double quaternionAngle(const double* a, const double* b);
+
+/// The unit quaternion at fraction t of the slerp from a to b (x, y, z, w; normalised first)
+/// along the shorter arc, as OMPL's SO(3) interpolation moves a rotation.
+void slerpQuaternion(const double* a, const double* b, double t, double* out);
 
 /// Over the straight joint-space motion q0 -> q1 (active joint values; a ball joint's
 /// quaternion moves by slerp along the shorter arc): `length` bounds the path of every point
