@@ -82,7 +82,6 @@ Scratch& scratch() {
   return s;
 }
 
-
 // Grows [lo, hi] (in the frame F: x_F = Rf^T (x_W - o)) by the element box (centre bc, half
 // extents bh in the shape frame) at shape pose X.
 void growByBox(const Eigen::Matrix3d& Rf, const Eigen::Vector3d& o, const Eigen::Isometry3d& X,

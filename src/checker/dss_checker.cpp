@@ -2,7 +2,6 @@
 #include "dss/checker/dss_checker.h"
 
 #include <algorithm>
-#include <atomic>
 #include <vector>
 
 #include "dss/checker/sweep.h"
@@ -26,28 +25,10 @@ Scratch& scratch() {
   thread_local Scratch s;
   return s;
 }
-
-// Per-thread separating directions of one checker's units (element x obstacle, then element x
-// element); a zero direction is no witness. A thread that switches checkers starts afresh.
-struct Witnesses {
-  std::uint64_t owner = 0;
-  std::vector<Eigen::Vector3d> dirs;
-};
-Witnesses& witnesses(std::uint64_t owner, std::size_t units) {
-  thread_local Witnesses w;
-  if (w.owner != owner || w.dirs.size() != units) {
-    w.owner = owner;
-    w.dirs.assign(units, Eigen::Vector3d::Zero());
-  }
-  return w;
-}
-std::atomic<std::uint64_t> next_serial{1};
 }  // namespace
 
 DssChecker::DssChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings)
-    : StateChecker(std::move(model)),
-      settings_(settings),
-      serial_(next_serial.fetch_add(1, std::memory_order_relaxed)) {}
+    : StateChecker(std::move(model)), settings_(settings) {}
 
 bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) const {
   const CollisionModel& m = model();
@@ -74,32 +55,14 @@ bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
     cap |= r.status == Status::kIterationLimit;
     return r.intersect;
   };
-  const std::size_t ne = elements.size(), no = obstacles.size();
-  Eigen::Vector3d* const dirs =
-      settings_.witnesses ? witnesses(serial_, ne * (no + ne)).dirs.data() : nullptr;
-  // The narrow phase of one unit, after its witness plane when it has one.
-  auto narrow = [&](const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
-                    const Eigen::Isometry3d& X_WB, double padding, std::size_t unit) {
-    if (dirs) {
-      Eigen::Vector3d& n = dirs[unit];
-      if (separatedAlong(a, X_WA, b, X_WB, n, padding)) {
-        ++tests;  // decided: counted as a narrow-phase test, whichever way
-        return false;
-      }
-      const Result r = intersect(a, X_WA, b, X_WB, settings_.options, padding);
-      if (!r.intersect) n = r.separating_direction;
-      return decide(r);
-    }
-    return decide(intersect(a, X_WA, b, X_WB, settings_.options, padding));
-  };
   auto scene = [&](int e, const Eigen::Isometry3d& X_WS, int o) {
     const Obstacle& ob = obstacles[o];
-    return narrow(elements[e].source->shape, X_WS, ob.shape, ob.X_WO, scene_padding,
-                  std::size_t(e) * no + std::size_t(o));
+    return decide(intersect(elements[e].source->shape, X_WS, ob.shape, ob.X_WO, settings_.options,
+                            scene_padding));
   };
   auto self = [&](int a, const Eigen::Isometry3d& X_WA, int b, const Eigen::Isometry3d& X_WB) {
-    return narrow(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB, self_padding,
-                  ne * no + std::size_t(a) * ne + std::size_t(b));
+    return decide(intersect(elements[a].source->shape, X_WA, elements[b].source->shape, X_WB,
+                            settings_.options, self_padding));
   };
   SweepOptions opt;
   opt.scene_padding = scene_padding;

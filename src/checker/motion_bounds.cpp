@@ -2,7 +2,6 @@
 #include "dss/checker/motion_bounds.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -2,7 +2,6 @@
 // shape's type to its instantiations (any_shape_<type>.cpp).
 #include "dss/core/any_shape_query.h"
 
-#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -69,29 +68,6 @@ Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShap
     return intersect(*ha, *hb, opt);  // world vertices: exact in Mode::kExact
   return std::visit(
       [&](const auto& sa) { return detail::decidePosed(sa, X_WA, b, X_WB, opt, padding); }, a);
-}
-
-namespace {
-// max over shape s at pose X of n.(x - shift).
-double supportValue(const AnyShape& s, const Eigen::Isometry3d& X, const Eigen::Vector3d& n,
-                    const Eigen::Vector3d& shift) {
-  return std::visit(
-      [&](const auto& shape) { return n.dot(detail::posedRef(shape, X).support(n, shift)); }, s);
-}
-}  // namespace
-
-bool separatedAlong(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
-                    const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& n, double padding) {
-  const double nn = n.norm();
-  if (!(nn > 0.0) || !detail::validInput(a, X_WA, b, X_WB, padding)) return false;
-  // Both supports relative to a's origin: the offset between the shapes enters once.
-  const Eigen::Vector3d& shift = X_WA.translation();
-  const double ha = supportValue(a, X_WA, n, shift);
-  const double lb = -supportValue(b, X_WB, -n, shift);
-  const double scale = shapeMagnitude(a) + shapeMagnitude(b) + (X_WB.translation() - shift).norm() +
-                       std::max(0.0, padding);
-  // Not-less also refuses a NaN anywhere.
-  return ha + std::max(0.0, padding) * nn < lb - 1e-10 * nn * scale;
 }
 
 Result intersectSwept(const AnyShape& a, const Eigen::Isometry3d& X_WA0,

@@ -5,7 +5,6 @@
 // SweptHull template does.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
-#include <limits>
 #include <random>
 
 #include "dss/core/any_shape_query.h"
@@ -134,87 +133,6 @@ BOOST_AUTO_TEST_CASE(swept_decisions_match_the_templates) {
   }
   BOOST_TEST(hits > n * 0.2);
   BOOST_TEST(hits < n * 0.9);
-}
-
-// separatedAlong: a plane that proves a pair apart. Seeded random pairs of every shape type
-// (with and without padding): never "apart" for a pair the exact decision finds intersecting,
-// whatever the direction; "apart" along the exact decision's own separating direction for
-// almost every disjoint pair, and along it again after a small move of one shape for most.
-// Two unit boxes along x at gaps of +-1e-6 and 0: apart only at +1e-6 (the rounding margin
-// takes the last 1e-10 of the size). Zero, NaN and infinite directions, poses or paddings:
-// never apart.
-BOOST_AUTO_TEST_CASE(separating_planes_prove_only_disjoint_pairs) {
-  std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> u(-1, 1);
-  auto pose = [&](double spread) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-    X.translation() = spread * Vec3d(u(rng), u(rng), u(rng));
-    return X;
-  };
-  std::vector<Vec3d> pts;
-  for (int k = 0; k < 30; ++k) pts.push_back(0.3 * Vec3d(u(rng), u(rng), u(rng)));
-  const std::vector<AnyShape> shapes = {Sphere{0.2},
-                                        Box::fromSize(Vec3d(0.4, 0.2, 0.3)),
-                                        Capsule::fromLength(0.1, 0.4),
-                                        Cylinder::fromLength(0.15, 0.3),
-                                        Cone::fromLength(0.2, 0.3),
-                                        Ellipsoid{Vec3d(0.3, 0.1, 0.2)},
-                                        ConvexHull(pts)};
-  int disjoint = 0, proved = 0, moved_proved = 0, intersecting = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const AnyShape& a = shapes[std::size_t(i) % shapes.size()];
-    const AnyShape& b = shapes[std::size_t(i / 7) % shapes.size()];
-    const Eigen::Isometry3d XA = pose(0.6), XB = pose(0.6);
-    const double pad = i % 3 == 0 ? 0.05 * std::abs(u(rng)) : 0.0;
-    const Result r = intersect(a, XA, b, XB, Options{}, pad);
-    if (r.intersect) {
-      ++intersecting;
-      BOOST_TEST(!separatedAlong(a, XA, b, XB, Vec3d(u(rng), u(rng), u(rng)), pad), "pair " << i);
-      BOOST_TEST(!separatedAlong(a, XA, b, XB, XB.translation() - XA.translation(), pad));
-      continue;
-    }
-    ++disjoint;
-    proved += separatedAlong(a, XA, b, XB, r.separating_direction, pad);
-    // A small move of b: the old plane still proves the pair apart when the move keeps it so.
-    Eigen::Isometry3d XB2 = XB;
-    XB2.translation() += 0.002 * Vec3d(u(rng), u(rng), u(rng));
-    if (separatedAlong(a, XA, b, XB2, r.separating_direction, pad)) {
-      ++moved_proved;
-      BOOST_TEST(!intersect(a, XA, b, XB2, Options{}, pad).intersect, "moved pair " << i);
-    }
-  }
-  BOOST_TEST(intersecting > 2000);
-  BOOST_TEST(disjoint > 2000);
-  BOOST_TEST(proved > 0.99 * disjoint);
-  BOOST_TEST(moved_proved > 0.5 * disjoint);
-  BOOST_TEST_MESSAGE("separating planes: " << disjoint << " disjoint pairs, " << proved
-                                           << " proved by their own plane, " << moved_proved
-                                           << " after a 2 mm move; " << intersecting
-                                           << " intersecting pairs never proved apart");
-
-  const AnyShape box = Box::fromSize(Vec3d(1, 1, 1));
-  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
-  auto at = [](double x) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.translation().x() = x;
-    return X;
-  };
-  const Vec3d ex(1, 0, 0);
-  BOOST_TEST(separatedAlong(box, I, box, at(1.0 + 1e-6), ex));
-  BOOST_TEST(!separatedAlong(box, I, box, at(1.0), ex));
-  BOOST_TEST(!separatedAlong(box, I, box, at(1.0 - 1e-6), ex));
-  BOOST_TEST(!separatedAlong(box, I, box, at(1.0 + 1e-6), -ex));
-  BOOST_TEST(separatedAlong(box, I, box, at(1.2), ex, 0.1));
-  BOOST_TEST(!separatedAlong(box, I, box, at(1.2), ex, 0.2));
-  const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
-  BOOST_TEST(!separatedAlong(box, I, box, at(3.0), Vec3d::Zero()));
-  BOOST_TEST(!separatedAlong(box, I, box, at(3.0), Vec3d(nan, 0, 0)));
-  BOOST_TEST(!separatedAlong(box, I, box, at(3.0), Vec3d(inf, 0, 0)));
-  BOOST_TEST(!separatedAlong(box, I, box, at(nan), ex));
-  BOOST_TEST(!separatedAlong(box, I, box, at(inf), ex));
-  BOOST_TEST(!separatedAlong(box, I, box, at(3.0), ex, nan));
-  BOOST_TEST(!separatedAlong(box, I, Box::fromSize(Vec3d(nan, 1, 1)), at(3.0), ex));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -12,7 +12,7 @@ struct CheckerCounters {
   std::uint64_t checks = 0;         ///< states checked
   std::uint64_t invalid_input = 0;  ///< of them: non-finite, or outside the model's bounds
   std::uint64_t collisions = 0;     ///< of them: found in collision
-  std::uint64_t pair_tests = 0;     ///< narrow-phase calls (a deciding witness plane counts)
+  std::uint64_t pair_tests = 0;     ///< narrow-phase calls
   std::uint64_t cap_hits = 0;       ///< states with a DSS answer at the iteration cap (colliding)
 
   /// The counts between two snapshots.

@@ -12,7 +12,6 @@
 // apart than its padding + r.
 #pragma once
 
-#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -26,12 +25,6 @@ struct DssCheckerSettings {
   double scene_padding = 0.0;  ///< "free" means distance > padding to every obstacle
   double self_padding = 0.0;
   bool obb_stage = true;  ///< the sweep's oriented-box stage (and inner balls)
-  /// Before the narrow phase of a pair, try the plane that separated the same pair in this
-  /// thread's last disjoint answer (separatedAlong: two supports, no search). Consecutive
-  /// queries on nearby states -- the states of a motion -- are mostly decided there. The
-  /// answers are those of the narrow phase: the plane proves "apart" with a rounding margin
-  /// or the narrow phase runs.
-  bool witnesses = true;
   /// clearance(): the returned lower bound is within this of the true clearance (metres), up
   /// to clearance_max (returned when every pair is at least that far apart).
   double clearance_tolerance = 1e-3;
@@ -64,7 +57,6 @@ class DssChecker : public StateChecker {
                   double scene_padding, double self_padding) const;
 
   Settings settings_;
-  std::uint64_t serial_;  ///< tells this checker's per-thread witness store from others'
 };
 
 }  // namespace dss

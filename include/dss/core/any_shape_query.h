@@ -22,13 +22,4 @@ namespace dss {
 Result intersect(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
                  const Eigen::Isometry3d& X_WB, const Options& opt = {}, double padding = 0.0);
 
-/// Whether the plane normal to `n` (world, any length) proves a at X_WA (grown by `padding`)
-/// and b at X_WB apart: max over a of n.x + padding |n| < min over b of n.y, with a margin of
-/// 1e-10 of the pair's size and offset covering the rounding of the supports. Two support
-/// evaluations, no search: a separating direction found for a nearby pose (Result::
-/// separating_direction) usually still separates. False, never a wrong "apart", for a zero
-/// or non-finite n, pose or shape.
-bool separatedAlong(const AnyShape& a, const Eigen::Isometry3d& X_WA, const AnyShape& b,
-                    const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& n, double padding = 0.0);
-
 }  // namespace dss
