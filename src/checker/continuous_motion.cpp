@@ -265,6 +265,14 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   if (boxesApart(lo_a, hi_a, lo_b, hi_b, p + margin)) return true;
   if (may_defer && p > kDeferRatio * std::min(ea.radius, eb.radius)) return false;
   ++*tests;
+  // A link that is the frame itself (the common ancestor) does not move there: only the other
+  // one is swept, at half the support cost.
+  if (f.chain_a.empty())
+    return !intersectSwept(eb.source->shape, YB0, YB1, p, ea.source->shape, YA0, set.options)
+                .intersect;
+  if (f.chain_b.empty())
+    return !intersectSwept(ea.source->shape, YA0, YA1, p, eb.source->shape, YB0, set.options)
+                .intersect;
   return !intersectSwept(ea.source->shape, YA0, YA1, p, eb.source->shape, YB0, YB1, set.options)
               .intersect;
 }
