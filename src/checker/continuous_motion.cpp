@@ -27,9 +27,9 @@ struct Interval {
   int pa, pb;              // the link poses at ta and tb: Scratch::pool slots
 };
 // One element over the current sub-motion: its sphere's centre at both ends, the ball around
-// its swept sphere (centre `mid`,
-// radius `reach`: half the chord of its centre, its radius and its slot's padding), its shape
-// poses at both ends, and whether the clearance grid clears that ball (-1: not asked yet).
+// its swept sphere (centre `mid`; radius `reach`: half the chord of its centre, its radius and
+// its slot's padding), its shape poses at both ends, and whether the clearance grid clears
+// that ball (-1: not asked yet).
 struct ElementSweep {
   std::uint64_t stamp = 0;  // the sub-motion these are for (Scratch::stamp)
   Eigen::Vector3d c0, c1;   // its sphere's centre at both ends
@@ -80,6 +80,12 @@ struct Scratch {
 Scratch& scratch() {
   thread_local Scratch s;
   return s;
+}
+
+// Every point of a set whose path is bounded by b stays within this of its chord (see
+// continuous_motion.h), with a rounding margin.
+double chordPadding(const MotionBound& b) {
+  return 0.5 * b.length * std::min(1.0, b.turn) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
 }
 
 // Grows [lo, hi] (in the frame F: x_F = Rf^T (x_W - o)) by the element box (centre bc, half
@@ -158,8 +164,7 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
 
 void ContinuousMotionChecker::paddings(const double* qa, const double* qb, double* pad) const {
   for (std::size_t k = 0; k < chains_.size(); ++k) {
-    const MotionBound b = motionBound(chains_[k], qa, qb);
-    pad[k] = 0.5 * b.length * std::min(1.0, b.turn) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
+    pad[k] = chordPadding(motionBound(chains_[k], qa, qb));
   }
 }
 
@@ -225,11 +230,8 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const PairFrame& f = pairs_[std::size_t(u.pair)];
   PairPads& pp = sc.pair_pads[std::size_t(u.pair)];
   if (pp.stamp != sc.stamp) {
-    const auto padOf = [](const MotionBound& b) {
-      return 0.5 * b.length * std::min(1.0, b.turn) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
-    };
-    pp.a = padOf(motionBound(f.chain_a, sc.qa.data(), sc.qb.data()));
-    pp.b = padOf(motionBound(f.chain_b, sc.qa.data(), sc.qb.data()));
+    pp.a = chordPadding(motionBound(f.chain_a, sc.qa.data(), sc.qb.data()));
+    pp.b = chordPadding(motionBound(f.chain_b, sc.qa.data(), sc.qb.data()));
     pp.stamp = sc.stamp;
   }
   // Sphere centres in F at both ends (F's inverse computed once per sub-motion), then the
