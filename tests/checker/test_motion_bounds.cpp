@@ -21,6 +21,7 @@
 #include "dss/robot/kinematics.h"
 #include "dss/robot/urdf_loader.h"
 #include "support/checker_fixtures.h"
+#include "support/shared_data.h"
 
 namespace {
 
@@ -286,6 +287,72 @@ BOOST_AUTO_TEST_CASE(prismatic_travel_covers_limits_and_held_values) {
                      j.name);
       }
     }
+}
+
+// The lowest common ancestor of two links: the lower one on a chain (our arm), the link two
+// branches hang from (the Panda's fingers on its hand), a link with itself.
+BOOST_AUTO_TEST_CASE(lowest_common_ancestors) {
+  const dss::LoadedRobot r = dss_test::loadArm();
+  const dss::RobotModel& robot = *r.model;
+  auto link = [&](const dss::RobotModel& m, const std::string& name) {
+    for (std::size_t i = 0; i < m.links.size(); ++i)
+      if (m.links[i].name == name) return int(i);
+    BOOST_FAIL("no link " << name);
+    return -1;
+  };
+  BOOST_TEST(dss::lowestCommonAncestor(robot, link(robot, "link2"), link(robot, "link6")) ==
+             link(robot, "link2"));
+  BOOST_TEST(dss::lowestCommonAncestor(robot, link(robot, "tcp"), link(robot, "link3")) ==
+             link(robot, "link3"));
+  BOOST_TEST(dss::lowestCommonAncestor(robot, link(robot, "link5"), link(robot, "link5")) ==
+             link(robot, "link5"));
+  BOOST_TEST(dss::lowestCommonAncestor(robot, link(robot, "link0"), link(robot, "tool")) ==
+             link(robot, "link0"));
+}
+
+BOOST_AUTO_TEST_CASE(lowest_common_ancestor_of_the_panda_fingers, DSS_NEEDS_SHARED) {
+  const auto r =
+      dss::loadRobot(dss_test::kPandaDir + "/panda.urdf", dss_test::kPandaDir + "/panda.srdf");
+  const dss::RobotModel& m = *r.model;
+  auto link = [&](const std::string& name) {
+    for (std::size_t i = 0; i < m.links.size(); ++i)
+      if (m.links[i].name == name) return int(i);
+    BOOST_FAIL("no link " << name);
+    return -1;
+  };
+  BOOST_TEST(dss::lowestCommonAncestor(m, link("panda_leftfinger"), link("panda_rightfinger")) ==
+             link("panda_hand"));
+  BOOST_TEST(dss::lowestCommonAncestor(m, link("panda_rightfinger"), link("panda_link3")) ==
+             link("panda_link3"));
+}
+
+// slerpQuaternion: the normalised ends at t = 0 and 1 (up to sign), the shorter arc (a
+// quaternion and a negated neighbour: the turn is the small one), a constant rate (the
+// midpoint is half the angle from both ends), and unnormalised inputs.
+BOOST_AUTO_TEST_CASE(slerp_moves_along_the_shorter_arc_at_a_constant_rate) {
+  std::mt19937_64 rng(77);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 2000; ++k) {
+    double a[4], b[4], out0[4], out1[4], mid[4];
+    for (int i = 0; i < 4; ++i) a[i] = 3.0 * g(rng), b[i] = 0.5 * g(rng);
+    dss::slerpQuaternion(a, b, 0.0, out0);
+    dss::slerpQuaternion(a, b, 1.0, out1);
+    dss::slerpQuaternion(a, b, 0.5, mid);
+    BOOST_TEST(dss::quaternionAngle(out0, a) < 1e-6);
+    BOOST_TEST(dss::quaternionAngle(out1, b) < 1e-6);
+    const double whole = dss::quaternionAngle(a, b);
+    BOOST_TEST(whole <= M_PI + 1e-9);  // the shorter arc
+    BOOST_TEST(std::abs(dss::quaternionAngle(a, mid) - 0.5 * whole) < 1e-6);
+    BOOST_TEST(std::abs(dss::quaternionAngle(mid, b) - 0.5 * whole) < 1e-6);
+    double n = 0.0;
+    for (double x : mid) n += x * x;
+    BOOST_TEST(std::abs(n - 1.0) < 1e-12);
+  }
+  // A quaternion and its near-opposite: the same rotation nearly, so a tiny turn.
+  const double a[4] = {0.0, 0.0, 0.0, 1.0}, b[4] = {1e-3, 0.0, 0.0, -1.0};
+  double mid[4];
+  dss::slerpQuaternion(a, b, 0.5, mid);
+  BOOST_TEST(dss::quaternionAngle(a, mid) < 2e-3);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
