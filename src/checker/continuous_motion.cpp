@@ -176,7 +176,7 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const auto& el = m.elements();
   Scratch& sc = scratch();
   // An element's sphere and shape poses over the sub-motion, computed once per sub-motion.
-  auto swept = [&](int e) -> const ElementSweep& {
+  auto swept = [&](int e) -> ElementSweep& {
     ElementSweep& s = sc.sweeps[std::size_t(e)];
     if (s.stamp == sc.stamp) return s;
     const CollisionModel::Element& x = el[std::size_t(e)];
@@ -202,14 +202,13 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     return s;
   };
   const auto& ea = el[u.a];
-  const ElementSweep& sa = swept(u.a);
+  ElementSweep& sa = swept(u.a);
   if (!u.self) {
     const double p = pad[ea.slot] + set.scene_padding;
     const double r = sa.reach + set.scene_padding;
     // One clearance-grid lookup clears the element against every obstacle at once.
-    ElementSweep& sm = sc.sweeps[std::size_t(u.a)];
-    if (sm.grid < 0) sm.grid = m.clearanceGrid().clear(sa.mid, r) ? 1 : 0;
-    if (sm.grid) return true;
+    if (sa.grid < 0) sa.grid = m.clearanceGrid().clear(sa.mid, r) ? 1 : 0;
+    if (sa.grid) return true;
     if (detail::sqDistPointAabb(sa.mid, m.obstacleBoxes()[u.b]) > r * r) return true;
     // The element's local box at both ends, bounded in the obstacle's box frame, grown by the
     // padding: apart along one of the frame's axes, the swept hull is apart too.
@@ -307,8 +306,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   const std::size_t n = m.robot().numActiveJoints();
   Scratch& sc = scratch();
   const std::size_t nl = m.robot().links.size();
-  if (sc.pool.size() != 0 && sc.pool.size() % nl != 0) sc.pool.clear(), sc.refs.clear();
-  if (sc.pool.size() / nl != sc.refs.size()) sc.pool.clear(), sc.refs.clear();
+  if (sc.pool.size() != sc.refs.size() * nl) sc.pool.clear(), sc.refs.clear();  // another model
   sc.free_slots.clear();
   for (std::size_t k = 0; k < sc.refs.size(); ++k) sc.refs[k] = 0, sc.free_slots.push_back(int(k));
   if (sc.pad.size() < m.slots().size()) sc.pad.resize(m.slots().size());
