@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -69,6 +70,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
     if (!moves_[l]) frames[m.links[l].name] = X_WL[l];
   resolveFrames(scene_, frames, /*require_all=*/true);
 
+  buildBounds();
   buildSlots();
   computeReach(X_WL);
   placeOnPoseLinks();
@@ -91,24 +93,54 @@ RobotModel CollisionModel::foldedRobot() const {
 }
 
 bool CollisionModel::withinBounds(const double* q) const {
-  const RobotModel& m = *robot_;
-  for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
-    if (!std::isfinite(q[a])) return false;
-    if (frozen_[a]) {
-      if (q[a] != held_[a]) return false;
-      continue;
+  const ValueBound* const b = bounds_.data();
+  const std::size_t n = bounds_.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    const double v = q[a];
+    switch (b[a].kind) {
+      case ValueBound::kRange:
+        if (!(v >= b[a].lower && v <= b[a].upper)) return false;
+        break;
+      case ValueBound::kFrozen:
+        if (!(v == b[a].held && std::abs(v) <= b[a].upper)) return false;
+        break;
+      case ValueBound::kHeldOrRange:
+        if (!(v == b[a].held || (v >= b[a].lower && v <= b[a].upper))) return false;
+        break;
+      case ValueBound::kQuaternion: {
+        const double* r = q + a;
+        if (!(std::abs(v) <= std::numeric_limits<double>::max() &&
+              std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]) >=
+                  kMinQuaternionNorm))
+          return false;
+        break;
+      }
     }
-    const RobotJoint& j = m.joints[m.active_joints[a]];
-    if (j.type == JointType::kBall && int(a) == j.active_index) {
-      const double* v = q + a;
-      if (!(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]) >= kMinQuaternionNorm))
-        return false;
-    }
-    if (j.type == JointType::kContinuous || !j.limits.has_position_limits) continue;
-    if (!in_group_[a] && q[a] == held_[a]) continue;
-    if (!(q[a] >= j.limits.lower && q[a] <= j.limits.upper)) return false;
   }
   return true;
+}
+
+void CollisionModel::buildBounds() {
+  const RobotModel& m = *robot_;
+  constexpr double kMax = std::numeric_limits<double>::max();
+  bounds_.clear();
+  for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
+    const RobotJoint& j = m.joints[m.active_joints[a]];
+    ValueBound b{-kMax, kMax, held_[a], ValueBound::kRange};
+    const bool limited = j.type != JointType::kContinuous && j.limits.has_position_limits;
+    if (limited) {
+      // Limits are finite when read from a file; an infinite one stays a test for finiteness.
+      b.lower = std::max(j.limits.lower, -kMax);
+      b.upper = std::min(j.limits.upper, kMax);
+    }
+    if (frozen_[a])
+      b = {-kMax, kMax, held_[a], ValueBound::kFrozen};  // held exactly, and finite
+    else if (j.type == JointType::kBall && int(a) == j.active_index)
+      b.kind = ValueBound::kQuaternion;
+    else if (limited && !in_group_[a] && std::isfinite(held_[a]))
+      b.kind = ValueBound::kHeldOrRange;
+    bounds_.push_back(b);
+  }
 }
 
 void CollisionModel::buildSlots() {

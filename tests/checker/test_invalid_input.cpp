@@ -4,6 +4,7 @@
 // outside them). Every state checker answers StateVerdict::kInvalidInput for any other state --
 // never "free", never a collision count -- and counts it in counters().invalid_input; the DSS
 // clearance of such a state is 0, and a motion from or to one is not clear.
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/continuous_motion.h"
 #include "dss/checker/dss_checker.h"
+#include "dss/robot/srdf.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
@@ -145,6 +147,35 @@ BOOST_AUTO_TEST_CASE(within_bounds_refuses_a_quaternion_without_direction) {
   const dss::DssChecker c(std::make_shared<const dss::CollisionModel>(
       r.model, &*r.srdf, dss::Scene{}, std::vector<int>{}, held));
   BOOST_TEST((c.check(q.data()) == dss::StateVerdict::kInvalidInput));
+}
+
+// A multi-DOF joint that the group does not move (the mobile base's planar joint when only its
+// mast arm plans) is folded into the kinematics at its held values: a state must hold it there
+// exactly, a finite value elsewhere (even within the workspace) is out, and so is NaN.
+BOOST_AUTO_TEST_CASE(within_bounds_holds_an_unmoved_multi_dof_joint_at_its_values) {
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_mobile_base";
+  const dss::LoadedRobot r =
+      dss::loadRobot(dir + "/dss_mobile_base.urdf", dir + "/dss_mobile_base.srdf");
+  std::vector<double> held = r.model->defaultState();
+  const int x = r.model->variableIndex("base/x"), theta = r.model->variableIndex("base/theta");
+  BOOST_REQUIRE(x >= 0);
+  BOOST_REQUIRE(theta >= 0);
+  held[x] = 1.25;
+  held[theta] = 0.5;
+  const std::vector<int> arm = dss::groupActiveJoints(*r.model, *r.srdf, "mast_arm");
+  BOOST_REQUIRE(std::find(arm.begin(), arm.end(), x) == arm.end());
+  const dss::CollisionModel m(r.model, &*r.srdf, dss::Scene{}, arm, held);
+  std::vector<double> q = held;
+  BOOST_TEST(m.withinBounds(q.data()));
+  for (double v : {1.0, std::nextafter(1.25, kInf), 0.0, kNan, kInf}) {
+    q[x] = v;
+    BOOST_TEST(!m.withinBounds(q.data()), "base/x at " << v);
+  }
+  q = held;
+  for (double v : {0.5 + 2 * M_PI, std::nextafter(0.5, 0.0), kNan, -kInf}) {
+    q[theta] = v;
+    BOOST_TEST(!m.withinBounds(q.data()), "base/theta at " << v);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(checkers_refuse_invalid_input_and_count_it) {

@@ -178,6 +178,7 @@ class CollisionModel {
 
  private:
   RobotModel foldedRobot() const;
+  void buildBounds();
   void buildSlots();
   void placeOnPoseLinks();
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
@@ -197,6 +198,15 @@ class CollisionModel {
   /// kinematics fold the joint at its held values (foldedRobot), so states must hold it there.
   std::vector<char> frozen_;
   std::vector<char> moves_;  ///< per link: moves with the group
+  /// withinBounds() per active joint, flattened: the range a value must lie in (+-DBL_MAX
+  /// without limits, so that the range test alone rejects NaN and infinities), and what else
+  /// applies.
+  struct ValueBound {
+    enum Kind : unsigned char { kRange, kFrozen, kHeldOrRange, kQuaternion };
+    double lower, upper, held;
+    Kind kind;
+  };
+  std::vector<ValueBound> bounds_;
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
