@@ -212,13 +212,59 @@ Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
         }
       }
     }
+    s.trig = -1;  // set by foldTranslations
+    steps_.push_back(s);
+    updated_.push_back(s.link);
+  }
+  foldTranslations(wanted);  // also numbers the axis-aligned rotations (trig_steps_)
+}
+
+void Kinematics::foldTranslations(const std::vector<char>& wanted) {
+  auto identityFrame = [](const Step& s) {
+    if (!s.identity_R) return false;
+    for (int i = 0; i < 3; ++i)
+      if (s.m[3][i][0] != 0.0) return false;
+    return true;
+  };
+  std::vector<int> uses(wanted.size(), 0);  // steps starting from each link's pose
+  for (const Step& s : steps_)
+    if (s.ref >= 0) ++uses[std::size_t(s.ref)];
+  for (std::size_t i = 0; i + 1 < steps_.size();) {
+    Step& a = steps_[i];
+    Step& b = steps_[i + 1];
+    const bool axis =
+        a.motion == Motion::kTransX || a.motion == Motion::kTransY || a.motion == Motion::kTransZ;
+    if (!axis || wanted[std::size_t(a.link)] || uses[std::size_t(a.link)] != 1 || b.ref != a.link ||
+        !identityFrame(b) || a.num_shifts + 1 + b.num_shifts > 3) {
+      ++i;
+      continue;
+    }
+    Step merged = a;  // a's reference and constant frame
+    merged.num_shifts = 0;
+    for (int k = 0; k < a.num_shifts; ++k) merged.shifts[merged.num_shifts++] = a.shifts[k];
+    merged.shifts[merged.num_shifts++] = {
+        a.q_index, static_cast<int>(a.motion) - static_cast<int>(Motion::kTransX), a.multiplier,
+        a.offset};
+    for (int k = 0; k < b.num_shifts; ++k) merged.shifts[merged.num_shifts++] = b.shifts[k];
+    // b's link and motion.
+    merged.link = b.link;
+    merged.motion = b.motion;
+    merged.axis = b.axis;
+    merged.q_index = b.q_index;
+    merged.multiplier = b.multiplier;
+    merged.offset = b.offset;
+    updated_.erase(std::find(updated_.begin(), updated_.end(), a.link));
+    steps_[i + 1] = merged;
+    steps_.erase(steps_.begin() + std::ptrdiff_t(i));
+  }
+  trig_steps_.clear();
+  for (std::size_t i = 0; i < steps_.size(); ++i) {
+    Step& s = steps_[i];
     s.trig = -1;
     if (s.motion == Motion::kRotX || s.motion == Motion::kRotY || s.motion == Motion::kRotZ) {
       s.trig = static_cast<int>(trig_steps_.size());
-      trig_steps_.push_back(static_cast<int>(steps_.size()));
+      trig_steps_.push_back(static_cast<int>(i));
     }
-    steps_.push_back(s);
-    updated_.push_back(s.link);
   }
 }
 
@@ -304,6 +350,23 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
     };
     // Translation along column k: p += d c_k.
     auto translate = [&c](int k, double d) { c[6] += d * c[2 * k], c[7] += d * c[2 * k + 1]; };
+    // (Each column by a constant index: an index known only at run time would keep the pose
+    // in memory rather than in registers.)
+    for (int k = 0; k < s.num_shifts; ++k) {
+      const Step::Shift& sh = s.shifts[k];
+      const double d = sh.multiplier * q[sh.q_index] + sh.offset;
+      switch (sh.col) {
+        case 0:
+          translate(0, d);
+          break;
+        case 1:
+          translate(1, d);
+          break;
+        default:
+          translate(2, d);
+          break;
+      }
+    }
     switch (s.motion) {
       case Motion::kNone:
         break;
@@ -321,15 +384,24 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
         break;
       case Motion::kBall: {
         // A quaternion of (nearly) zero or non-finite norm has no rotation: the pose becomes
-        // NaN, which every checker answers as invalid input.
-        const double* v = q + s.q_index;
-        Eigen::Quaterniond r(v[3], v[0], v[1], v[2]);
-        const double norm = r.norm();
+        // NaN, which every checker answers as invalid input. Otherwise the rotation of the
+        // quaternion scaled to unit norm, from its squared norm n2 (one division, and the
+        // square root only for the test, off the path to the pose).
+        const double x = q[s.q_index], y = q[s.q_index + 1], z = q[s.q_index + 2],
+                     w = q[s.q_index + 3];
+        const double n2 = x * x + y * y + z * z + w * w;
         Eigen::Matrix3d M;
-        if (norm >= kMinQuaternionNorm && std::isfinite(norm))
-          M = Eigen::Quaterniond(r.coeffs() / norm).toRotationMatrix();
-        else
+        if (std::sqrt(n2) >= kMinQuaternionNorm && n2 <= std::numeric_limits<double>::max()) {
+          const double f = 2.0 / n2;
+          const double fx = f * x, fy = f * y, fz = f * z;
+          const double xx = fx * x, yy = fy * y, zz = fz * z, xy = fx * y, xz = fx * z, yz = fy * z,
+                       wx = fx * w, wy = fy * w, wz = fz * w;
+          M << 1.0 - (yy + zz), xy - wz, xz + wy,  //
+              xy + wz, 1.0 - (xx + zz), yz - wx,   //
+              xz - wy, yz + wx, 1.0 - (xx + yy);
+        } else {
           M.setConstant(std::numeric_limits<double>::quiet_NaN());
+        }
         turn(M);
         break;
       }

@@ -252,6 +252,72 @@ BOOST_AUTO_TEST_CASE(boxes_touch_edge_cases) {
   BOOST_TEST(!dss::boxesTouch(I * nan, {0, 0, 0}, h, I, {0, 0, 0}, h, 0.0));
 }
 
+// boxStages gives exactly what obbApart and then boxesTouch give: random, yaw-only and nearly
+// parallel poses at every scale, pairs near contact (B slid to a random gap around the
+// padding), inner boxes a little smaller than the outer ones (and equal), obstacles with the
+// identity rotation through boxStagesAxisAligned, and NaN anywhere (kUnknown, as both tests
+// then answer false).
+BOOST_AUTO_TEST_CASE(box_stages_answer_as_the_two_stages_in_turn) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::size_t count[3] = {};
+  auto expected = [](const Eigen::Isometry3d& XA, const Eigen::Vector3d& ho,
+                     const Eigen::Vector3d& hi, const Eigen::Isometry3d& XB,
+                     const Eigen::Vector3d& hbo, const Eigen::Vector3d& hbi, double pad) {
+    if (dss::obbApart(XA.linear(), XA.translation(), ho, XB.linear(), XB.translation(), hbo, pad))
+      return dss::BoxStage::kApart;
+    return dss::boxesTouch(XA.linear(), XA.translation(), hi, XB.linear(), XB.translation(), hbi,
+                           pad)
+               ? dss::BoxStage::kTouch
+               : dss::BoxStage::kUnknown;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const double scale = std::ldexp(1.0, static_cast<int>(u(rng) * 12) - 6);
+    const Eigen::Vector3d ho = scale * Eigen::Vector3d(0.05 + u(rng), 0.05 + u(rng), 0.05 + u(rng));
+    const Eigen::Vector3d hbo =
+        scale * Eigen::Vector3d(0.05 + u(rng), 0.05 + u(rng), 0.05 + u(rng));
+    const Eigen::Vector3d hi = i % 5 == 0 ? ho : Eigen::Vector3d(ho * (1.0 - 1e-7 * (1 + u(rng))));
+    const Eigen::Vector3d hbi = i % 7 == 0 ? Eigen::Vector3d(hbo * 0.999) : hbo;
+    Eigen::Isometry3d XA = randomPose(rng, scale), XB = randomPose(rng, scale);
+    const int kind = i % 4;
+    if (kind == 1 || kind == 2) {
+      XA.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      XB.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      if (kind == 2)
+        XB.linear() =
+            XB.linear() * Eigen::AngleAxisd(std::ldexp(u(rng), -static_cast<int>(u(rng) * 60)),
+                                            Eigen::Vector3d::UnitX())
+                              .toRotationMatrix();
+    }
+    if (kind == 3) XB.linear().setIdentity();  // an axis-aligned obstacle
+    const double pad = i % 3 == 0 ? 0.0 : 0.1 * scale * u(rng);
+    if (i % 2) {  // near contact: along the centre line, to a gap around the padding
+      const Eigen::Vector3d d = XB.translation() - XA.translation();
+      if (d.norm() > 0) XB.translation() = XA.translation() + d * (0.6 + 0.5 * u(rng));
+    }
+    const dss::BoxStage want = expected(XA, ho, hi, XB, hbo, hbi, pad);
+    const dss::BoxStage got = dss::boxStages(XA.linear(), XA.translation(), ho, hi, XB.linear(),
+                                             XB.translation(), hbo, hbi, pad);
+    BOOST_TEST_REQUIRE((got == want), "pair " << i);
+    if (kind == 3)
+      BOOST_TEST_REQUIRE((dss::boxStagesAxisAligned(XA.linear(), XA.translation(), ho, hi,
+                                                    XB.translation(), hbo, hbi, pad) == want),
+                         "pair " << i << ", axis-aligned");
+    ++count[static_cast<int>(want)];
+  }
+  BOOST_TEST_MESSAGE(count[0] << " apart, " << count[1] << " touching, " << count[2] << " unknown");
+  for (std::size_t c : count) BOOST_TEST(c > 1000u);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d h(1, 1, 1);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  BOOST_TEST(
+      (dss::boxStages(I, {nan, 0, 0}, h, h, I, {0, 0, 0}, h, h, 0.0) == dss::BoxStage::kUnknown));
+  BOOST_TEST((dss::boxStagesAxisAligned(I, {0, 0, 0}, h, h, {0, 0, 0}, h, h, nan) ==
+              dss::BoxStage::kUnknown));
+  BOOST_TEST((dss::boxStages(I * nan, {0, 0, 0}, h, h, I, {3, 0, 0}, h, h, 0.0) ==
+              dss::BoxStage::kUnknown));
+}
+
 // innerBox of each primitive: inside (exact DSS on its corners) and as large as promised.
 BOOST_AUTO_TEST_CASE(inner_box_of_primitives) {
   const std::vector<std::pair<dss::AnyShape, double>> shapes = {

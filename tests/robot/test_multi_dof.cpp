@@ -55,6 +55,27 @@ Isometry3d elbowPose(double elbow) {
   return X;
 }
 
+// The kinematics of the links with geometry only (the default) folds the multi-DOF joint's
+// translation links into the body's step: those links are not written, and the body and arm
+// poses are exactly those of the kinematics of every link.
+void samePosesWithFoldedSteps(const dss::RobotModel& m, const dss::Kinematics& all,
+                              const std::vector<double>& q) {
+  const dss::Kinematics geometry(m);
+  BOOST_TEST(geometry.updatedLinks().size() < all.updatedLinks().size());
+  for (int l : geometry.updatedLinks()) BOOST_TEST(m.links[l].name.find('/') == std::string::npos);
+  const Isometry3d unset = Isometry3d(Eigen::Matrix4d::Constant(-7.0));
+  std::vector<Isometry3d> X(m.links.size(), unset);
+  geometry.computeLinkPoses(q.data(), X.data());
+  const auto Y = all.linkPoses(q);
+  for (const char* name : {"body", "arm"}) {
+    const int l = m.linkIndexOrThrow(name);
+    BOOST_TEST((X[l].matrix() == Y[l].matrix()), name);
+  }
+  BOOST_TEST(
+      (X[m.linkIndexOrThrow("base/" + std::string(q.size() == 4 ? "x" : "trans_x"))].matrix() ==
+       unset.matrix()));
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(multi_dof)
@@ -87,6 +108,7 @@ BOOST_AUTO_TEST_CASE(urdf_planar_joint_is_x_y_theta_in_its_joint_frame) {
     BOOST_TEST((X[m.linkIndexOrThrow("body")].matrix() - body.matrix()).norm() < 1e-12);
     const Isometry3d arm = body * elbowPose(q[3]);
     BOOST_TEST((X[m.linkIndexOrThrow("arm")].matrix() - arm.matrix()).norm() < 1e-12);
+    samePosesWithFoldedSteps(m, kin, q);
   }
 }
 
@@ -122,6 +144,7 @@ BOOST_AUTO_TEST_CASE(urdf_floating_joint_is_translation_then_quaternion) {
     BOOST_TEST((X[m.linkIndexOrThrow("body")].matrix() - body.matrix()).norm() < 1e-12);
     const Isometry3d arm = body * elbowPose(q[7]);
     BOOST_TEST((X[m.linkIndexOrThrow("arm")].matrix() - arm.matrix()).norm() < 1e-12);
+    samePosesWithFoldedSteps(m, kin, q);
   }
   // A zero quaternion has no rotation: the poses below it are NaN, never a made-up pose.
   std::vector<double> q = d;

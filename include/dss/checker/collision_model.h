@@ -88,6 +88,9 @@ class CollisionModel {
     bool has_inner_box = false;
     Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
     Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
+    /// The inner box shares the local box's centre (exactly): the sweep tests both boxes in one
+    /// pass (boxStages).
+    bool inner_box_centred = false;
   };
   /// A link with geometry.
   struct Slot {

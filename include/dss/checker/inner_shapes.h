@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "dss/checker/obb.h"
 #include "dss/core/any_shape.h"
 
 namespace dss {
@@ -73,6 +74,77 @@ inline bool boxesTouch(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
     }
   }
   return true;
+}
+
+/// The oriented-box stage and the inner-box stage of one element against one box obstacle in a
+/// single pass, for an element whose local box and inner box share their centre (every shape
+/// but a cone: innerBox shrinks about the local box's centre). The same answers as
+/// obbApart(Ra, ca, h_outer, Rb, cb, hb_outer, pad) followed by
+/// boxesTouch(Ra, ca, h_inner, Rb, cb, hb_inner, pad), with the relative position and rotation
+/// computed once for both.
+enum class BoxStage { kApart, kTouch, kUnknown };
+
+namespace detail {
+/// `column(j)`: column j of R = Ra^T Rb; t = Ra^T (cb - ca). See boxStages. One pass over the
+/// 15 axes: the outer test (early exit on a separating axis), and the inner one while every
+/// axis so far shows the overlap it needs.
+template <class Column>
+__attribute__((always_inline)) inline BoxStage boxStagesInA(
+    const Eigen::Vector3d& t, const Eigen::Vector3d& ho, const Eigen::Vector3d& hbo,
+    const Eigen::Vector3d& hi_in, const Eigen::Vector3d& hbi, double pad, Column&& column) {
+  const double tsum = t.cwiseAbs().sum();
+  const double margin_o = pad + 1e-9 * (ho.sum() + hbo.sum() + tsum) + 1e-12;
+  const Eigen::Vector3d hi = hi_in.array() + pad * 0.57735026918962573;
+  const double margin_i = 1e-9 * (hi.sum() + hbi.sum() + tsum) + 1e-300;
+  Eigen::Matrix3d R, A, Ao;  // A = |R|; Ao = |R| + 1e-12 (the outer test's)
+  bool touch = true;
+  for (int j = 0; j < 3; ++j) {
+    R.col(j) = column(j);
+    A.col(j) = R.col(j).cwiseAbs();
+    Ao.col(j) = A.col(j).array() + 1e-12;
+    const double d = std::abs(t.dot(R.col(j)));
+    if (d > ho.dot(Ao.col(j)) + hbo[j] + margin_o) return BoxStage::kApart;
+    touch = touch && d < hi.dot(A.col(j)) + hbi[j] - margin_i;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double d = std::abs(t[i]);
+    if (d > ho[i] + hbo.dot(Ao.row(i)) + margin_o) return BoxStage::kApart;
+    touch = touch && d < hi[i] + hbi.dot(A.row(i)) - margin_i;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double d = std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j));
+      const double rao = ho[i1] * Ao(i2, j) + ho[i2] * Ao(i1, j);
+      const double rbo = hbo[j1] * Ao(i, j2) + hbo[j2] * Ao(i, j1);
+      if (d > rao + rbo + margin_o) return BoxStage::kApart;
+      if (!touch || R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j) < 1e-24) continue;
+      const double rai = hi[i1] * A(i2, j) + hi[i2] * A(i1, j);
+      const double rbi = hbi[j1] * A(i, j2) + hbi[j2] * A(i, j1);
+      touch = d < rai + rbi - margin_i;
+    }
+  }
+  return touch ? BoxStage::kTouch : BoxStage::kUnknown;
+}
+}  // namespace detail
+
+inline BoxStage boxStages(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                          const Eigen::Vector3d& h_outer, const Eigen::Vector3d& h_inner,
+                          const Eigen::Matrix3d& Rb, const Eigen::Vector3d& cb,
+                          const Eigen::Vector3d& hb_outer, const Eigen::Vector3d& hb_inner,
+                          double pad) {
+  return detail::boxStagesInA(Ra.transpose() * (cb - ca), h_outer, hb_outer, h_inner, hb_inner, pad,
+                              [&](int j) { return Eigen::Vector3d(Ra.transpose() * Rb.col(j)); });
+}
+
+/// boxStages for an obstacle box whose rotation is exactly the identity.
+inline BoxStage boxStagesAxisAligned(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
+                                     const Eigen::Vector3d& h_outer, const Eigen::Vector3d& h_inner,
+                                     const Eigen::Vector3d& cb, const Eigen::Vector3d& hb_outer,
+                                     const Eigen::Vector3d& hb_inner, double pad) {
+  return detail::boxStagesInA(Ra.transpose() * (cb - ca), h_outer, hb_outer, h_inner, hb_inner, pad,
+                              [&](int j) { return Eigen::Vector3d(Ra.row(j).transpose()); });
 }
 
 }  // namespace dss

@@ -121,26 +121,40 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const Element& el = elements[e];
       Eigen::Isometry3d X_prod;
       const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
+      const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: not a box
+      const bool inner =
+          opt.inner_shapes && (el.has_inner_box || el.num_inner > 0) && half.x() >= 0.0;
+      bool box_tested = false;  // the inner box, with the oriented boxes (boxStages)
       if (opt.obb_stage) {
         const Obb& ob = obbs[o];
         const Eigen::Vector3d box_c = X_WS * el.box_center_S;
-        if (ob.axis_aligned
-                ? obbApartAxisAligned(X_WS.linear(), box_c, el.box_half, ob.c, ob.h, scene_padding)
-                : obbApart(X_WS.linear(), box_c, el.box_half, ob.R, ob.c, ob.h, scene_padding))
+        if (inner && el.inner_box_centred) {
+          const BoxStage v =
+              ob.axis_aligned
+                  ? boxStagesAxisAligned(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.c,
+                                         ob.h, half, scene_padding)
+                  : boxStages(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.R, ob.c, ob.h,
+                              half, scene_padding);
+          if (v == BoxStage::kApart) return false;
+          if (v == BoxStage::kTouch) return true;
+          box_tested = true;
+        } else if (ob.axis_aligned ? obbApartAxisAligned(X_WS.linear(), box_c, el.box_half, ob.c,
+                                                         ob.h, scene_padding)
+                                   : obbApart(X_WS.linear(), box_c, el.box_half, ob.R, ob.c, ob.h,
+                                              scene_padding)) {
           return false;
-      }
-      if (opt.inner_shapes && (el.has_inner_box || el.num_inner > 0)) {
-        const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
-        if (half.x() >= 0.0) {
-          const Obb& ob = obbs[o];
-          if (el.has_inner_box && boxesTouch(X_WS.linear(), X_WS * el.inner_box_c, el.inner_box_h,
-                                             ob.R, ob.c, half, scene_padding))
-            return true;
-          for (int b = 0; b < el.num_inner; ++b)
-            if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half,
-                               scene_padding))
-              return true;
         }
+      }
+      if (inner) {
+        const Obb& ob = obbs[o];
+        if (el.has_inner_box && !box_tested &&
+            boxesTouch(X_WS.linear(), X_WS * el.inner_box_c, el.inner_box_h, ob.R, ob.c, half,
+                       scene_padding))
+          return true;
+        for (int b = 0; b < el.num_inner; ++b)
+          if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half,
+                             scene_padding))
+            return true;
       }
       return scene(e, X_WS, o);
     };

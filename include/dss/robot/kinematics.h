@@ -9,7 +9,9 @@
 // +-z (nearly all real robots) take a short path with one sin/cos pair (computed two joints at
 // a time) and 12 products; constant frames turned by multiples of pi/2 (most URDF origins)
 // select and negate columns instead of multiplying by a rotation; poses are computed as pairs
-// of doubles (SIMD registers).
+// of doubles (SIMD registers). A moving link without geometry that only leads to the next
+// computed link (the x and y links of a planar joint, the position links of a floating one)
+// is not written: its translation is applied in that next step (updatedLinks() leaves it out).
 // Mimic joints read their leader's value: q = multiplier * q_leader + offset.
 // Thread safety: const queries on one Kinematics may run concurrently. A Kinematics keeps
 // no reference to its RobotModel.
@@ -80,9 +82,23 @@ class Kinematics {
     int col[3];
     Pair sign[3];
     Motion motion;
+    /// Translations along the columns of the pose (after the constant frame, before the
+    /// motion): the steps of links that nothing else needs, folded into this one (the x and y of
+    /// a planar joint, the position of a floating one). Translations commute, and the folded
+    /// steps' own frames are the identity, so the pose is the same.
+    struct Shift {
+      int q_index;
+      int col;
+      double multiplier, offset;
+    };
+    int num_shifts = 0;
+    Shift shifts[3];
   };
 
   static void setConstantFrame(Step* s, const Eigen::Isometry3d& X);
+  /// Folds axis-aligned translation steps of links that are not wanted into the step that
+  /// follows them (Step::shifts), where that step starts from their pose with an identity frame.
+  void foldTranslations(const std::vector<char>& wanted);
 
   std::vector<Step> steps_;
   std::vector<int> trig_steps_;  // steps with an axis-aligned rotation, in order
