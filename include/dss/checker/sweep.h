@@ -72,7 +72,13 @@ const Eigen::Isometry3d& placedShape(const Eigen::Isometry3d& X, const Collision
                                      Eigen::Isometry3d& scratch) {
   constexpr bool kFolded = kPoses == SweepPoses::kPoseLinks;
   if (kFolded ? e.identity_PS : e.identity_LS) return X;
-  scratch = X * (kFolded ? e.X_PS : e.source->X_LS);
+  // The product of the two rigid transforms written out (inlined; Eigen's goes through a call
+  // and multiplies the bottom rows too).
+  const Eigen::Isometry3d& Y = kFolded ? e.X_PS : e.source->X_LS;
+  scratch.linear().noalias() = X.linear() * Y.linear();
+  scratch.translation().noalias() = X.linear() * Y.translation();
+  scratch.translation() += X.translation();
+  scratch.makeAffine();
   return scratch;
 }
 }  // namespace detail
