@@ -16,7 +16,6 @@ namespace {
 using Pair = double __attribute__((vector_size(16)));
 using PairBits = std::int64_t __attribute__((vector_size(16)));
 
-inline Pair splat(double v) { return Pair{v, v}; }
 inline Pair loadPair(const double* p) {
   Pair v;
   std::memcpy(&v, p, sizeof v);
@@ -116,11 +115,11 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
   s->perm = permutation;
   for (int j = 0; j < 3; ++j) {
     s->col[j] = permutation ? perm[j] : j;
-    s->sign[j] = splat(permutation ? R_c(perm[j], j) : 1.0);
+    std::fill_n(s->sign[j], 4, permutation ? R_c(perm[j], j) : 1.0);
   }
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) s->m[j][i] = splat(R_c(i, j));
-    s->m[3][i] = splat(p_c[i]);
+    for (int j = 0; j < 3; ++j) std::fill_n(s->m[j][i], 4, R_c(i, j));
+    std::fill_n(s->m[3][i], 4, p_c[i]);
   }
 }
 
@@ -275,7 +274,88 @@ double Kinematics::jointValue(const double* q, int joint) const {
   return 0.0;
 }
 
-void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) const {
+namespace {
+
+// A column of a pose, (x, y, z, w), as four doubles. Quad is the compiler's vector: one AVX
+// register in a function compiled for AVX2, two SSE2 registers otherwise (each operation split
+// in two, element by element). ScalarQuad is a plain struct with the same element-wise
+// operations. Every path forms the same products and sums in the same order (and never a fused
+// multiply-add), so the poses are the same to the bit.
+using Quad = double __attribute__((vector_size(32)));
+
+struct ScalarQuad {
+  double v[4];
+};
+inline ScalarQuad operator+(ScalarQuad a, const ScalarQuad& b) {
+  for (int i = 0; i < 4; ++i) a.v[i] += b.v[i];
+  return a;
+}
+inline ScalarQuad operator-(ScalarQuad a, const ScalarQuad& b) {
+  for (int i = 0; i < 4; ++i) a.v[i] -= b.v[i];
+  return a;
+}
+inline ScalarQuad operator*(ScalarQuad a, double f) {
+  for (int i = 0; i < 4; ++i) a.v[i] *= f;
+  return a;
+}
+inline ScalarQuad operator*(ScalarQuad a, const ScalarQuad& b) {
+  for (int i = 0; i < 4; ++i) a.v[i] *= b.v[i];
+  return a;
+}
+inline ScalarQuad operator*(double f, ScalarQuad a) {
+  for (int i = 0; i < 4; ++i) a.v[i] = f * a.v[i];
+  return a;
+}
+inline ScalarQuad& operator+=(ScalarQuad& a, const ScalarQuad& b) { return a = a + b; }
+
+// Two SSE2 registers: (x, y) and (z, w).
+struct PairColumn {
+  Pair lo, hi;
+};
+inline PairColumn operator+(const PairColumn& a, const PairColumn& b) {
+  return {a.lo + b.lo, a.hi + b.hi};
+}
+inline PairColumn operator-(const PairColumn& a, const PairColumn& b) {
+  return {a.lo - b.lo, a.hi - b.hi};
+}
+inline PairColumn operator*(const PairColumn& a, double f) { return {a.lo * f, a.hi * f}; }
+inline PairColumn operator*(const PairColumn& a, const PairColumn& b) {
+  return {a.lo * b.lo, a.hi * b.hi};
+}
+inline PairColumn operator*(double f, const PairColumn& a) { return {f * a.lo, f * a.hi}; }
+inline PairColumn& operator+=(PairColumn& a, const PairColumn& b) { return a = a + b; }
+
+// Columns are passed and returned by value (by address the compiler would keep them in memory
+// rather than in registers). These helpers and Kinematics::run are always inlined: no call
+// passes a 32-byte vector, whose calling convention would depend on the instruction set (GCC's
+// -Wpsabi note about it, silenced down to the AVX2 wrapper, does not apply).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+template <class Column>
+__attribute__((always_inline)) inline Column loadColumn(const double* p) {
+  Column v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <>
+__attribute__((always_inline)) inline PairColumn loadColumn<PairColumn>(const double* p) {
+  return {loadPair(p), loadPair(p + 2)};
+}
+template <class Column>
+__attribute__((always_inline)) inline void storeColumn(double* p, Column v) {
+  std::memcpy(p, &v, sizeof v);
+}
+template <>
+__attribute__((always_inline)) inline void storeColumn<PairColumn>(double* p, PairColumn v) {
+  storePair(p, v.lo);
+  storePair(p + 2, v.hi);
+}
+
+}  // namespace
+
+template <class Column>
+__attribute__((always_inline)) inline void Kinematics::run(const double* q,
+                                                           Eigen::Isometry3d* X_WL) const {
   // The sines and cosines of the axis-aligned revolute joints first, all together (see
   // fastSinCosArray), in blocks of kTrigBlock.
   constexpr int kTrigBlock = 32;
@@ -283,10 +363,10 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
   const int num_trig = static_cast<int>(trig_steps_.size());
   X_WL[root_] = X_WR_;
   int block_begin = 0, block_end = 0;
-  // A pose as 8 pairs: column j of the column-major 4x4 matrix is (x, y) in c[2j] and (z, w) in
-  // c[2j + 1]. The pose of the previous step stays in c when it is the next step's reference
-  // (a chain), so that it comes from registers rather than from the stores just made.
-  Pair c[8] = {};
+  // A pose as 4 columns of the column-major 4x4 matrix. The pose of the previous step stays in
+  // c when it is the next step's reference (a chain), so that it comes from registers rather
+  // than from the stores just made.
+  Column c[4] = {};
   int prev_link = -2;
   // The step array and its size are read once: the stores into X_WL below would otherwise make
   // the compiler reload them every step.
@@ -306,50 +386,43 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
       fastSinCosArray(v, sn, cs, n);
       block_end = block_begin + n;
     }
-    Pair a[8];
-    if (s.ref == prev_link) {
-      std::copy(c, c + 8, a);
-    } else {
-      const double* A = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data();
-      for (int k = 0; k < 8; ++k) a[k] = loadPair(A + 2 * k);
-    }
-    // [c | p] = [a | at] [R_c | p_c], both halves of every column; the sums in the order
-    // a0 * m0 + a1 * m1 + a2 * m2 (+ at first for p).
-    // A signed permutation selects columns: for finite poses sign * column is exactly the sum
-    // the general product forms with its exact zeros and ones (up to the sign of a zero). The
-    // columns are read back from the reference pose just stored (a register cannot be picked
-    // by index).
+    Column a[4];
     const double* const A_ref = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data();
-    for (int h = 0; h < 2; ++h) {
-      if (s.identity_R) {
-        c[h] = a[h], c[2 + h] = a[2 + h], c[4 + h] = a[4 + h];
-      } else if (s.perm) {
-        for (int j = 0; j < 3; ++j)
-          c[2 * j + h] = loadPair(A_ref + 4 * s.col[j] + 2 * h) * s.sign[j];
-      } else {
-        for (int j = 0; j < 3; ++j)
-          c[2 * j + h] = a[h] * s.m[j][0] + a[2 + h] * s.m[j][1] + a[4 + h] * s.m[j][2];
-      }
-      c[6 + h] = ((a[6 + h] + a[h] * s.m[3][0]) + a[2 + h] * s.m[3][1]) + a[4 + h] * s.m[3][2];
+    if (s.ref == prev_link) {
+      std::copy(c, c + 4, a);
+    } else {
+      for (int k = 0; k < 4; ++k) a[k] = loadColumn<Column>(A_ref + 4 * k);
     }
+    // [c | p] = [a | at] [R_c | p_c]; the sums in the order a0 * m0 + a1 * m1 + a2 * m2 (+ at
+    // first for p). A signed permutation selects columns: for finite poses sign * column is
+    // exactly the sum the general product forms with its exact zeros and ones (up to the sign
+    // of a zero). The columns are read back from the reference pose just stored (a register
+    // cannot be picked by index).
+    if (s.identity_R) {
+      c[0] = a[0], c[1] = a[1], c[2] = a[2];
+    } else if (s.perm) {
+      for (int j = 0; j < 3; ++j)
+        c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * loadColumn<Column>(s.sign[j]);
+    } else {
+      for (int j = 0; j < 3; ++j)
+        c[j] = a[0] * loadColumn<Column>(s.m[j][0]) + a[1] * loadColumn<Column>(s.m[j][1]) +
+               a[2] * loadColumn<Column>(s.m[j][2]);
+    }
+    c[3] = ((a[3] + a[0] * loadColumn<Column>(s.m[3][0])) + a[1] * loadColumn<Column>(s.m[3][1])) +
+           a[2] * loadColumn<Column>(s.m[3][2]);
     // Rotation about axis k mixes columns k + 1 and k + 2: x' = cos x + sin y, y' = cos y - sin x.
     auto rotate = [&c](int ca, int cb, double sv, double cv) {
-      for (int h = 0; h < 2; ++h) {
-        const Pair x = c[2 * ca + h], y = c[2 * cb + h];
-        c[2 * ca + h] = cv * x + sv * y;
-        c[2 * cb + h] = cv * y - sv * x;
-      }
+      const Column x = c[ca], y = c[cb];
+      c[ca] = cv * x + sv * y;
+      c[cb] = cv * y - sv * x;
     };
     // A general rotation M of the joint frame: column j becomes sum_i M(i, j) column i.
     auto turn = [&c](const Eigen::Matrix3d& M) {
-      Pair x[6];
-      std::copy(c, c + 6, x);
-      for (int h = 0; h < 2; ++h)
-        for (int j = 0; j < 3; ++j)
-          c[2 * j + h] = x[h] * M(0, j) + x[2 + h] * M(1, j) + x[4 + h] * M(2, j);
+      const Column x0 = c[0], x1 = c[1], x2 = c[2];
+      for (int j = 0; j < 3; ++j) c[j] = x0 * M(0, j) + x1 * M(1, j) + x2 * M(2, j);
     };
     // Translation along column k: p += d c_k.
-    auto translate = [&c](int k, double d) { c[6] += d * c[2 * k], c[7] += d * c[2 * k + 1]; };
+    auto translate = [&c](int k, double d) { c[3] += d * c[k]; };
     // (Each column by a constant index: an index known only at run time would keep the pose
     // in memory rather than in registers.)
     for (int k = 0; k < s.num_shifts; ++k) {
@@ -416,16 +489,62 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
         break;
       case Motion::kTransAxis: {
         const double d = s.multiplier * q[s.q_index] + s.offset;
-        for (int h = 0; h < 2; ++h)
-          c[6 + h] += d * (c[h] * s.axis.x() + c[2 + h] * s.axis.y() + c[4 + h] * s.axis.z());
+        c[3] += d * (c[0] * s.axis.x() + c[1] * s.axis.y() + c[2] * s.axis.z());
         break;
       }
     }
     // The bottom row is written exactly (0 0 0 1), whatever the products gave it.
     double* X = X_WL[s.link].matrix().data();
-    for (int k = 0; k < 8; ++k) storePair(X + 2 * k, c[k]);
+    for (int k = 0; k < 4; ++k) storeColumn(X + 4 * k, c[k]);
     X[3] = 0.0, X[7] = 0.0, X[11] = 0.0, X[15] = 1.0;
     prev_link = s.link;
+  }
+}
+
+void Kinematics::computeScalar(const double* q, Eigen::Isometry3d* X_WL) const {
+  run<ScalarQuad>(q, X_WL);
+}
+
+void Kinematics::computeSse2(const double* q, Eigen::Isometry3d* X_WL) const {
+  run<PairColumn>(q, X_WL);
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+__attribute__((target("avx2"))) void Kinematics::computeAvx2(const double* q,
+                                                             Eigen::Isometry3d* X_WL) const {
+  run<Quad>(q, X_WL);
+}
+#else
+void Kinematics::computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const { run<Quad>(q, X_WL); }
+#endif
+#pragma GCC diagnostic pop
+
+void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) const {
+  switch (path_) {
+    case SimdPath::kAvx2:
+      computeAvx2(q, X_WL);
+      break;
+    case SimdPath::kSse2:
+      computeSse2(q, X_WL);
+      break;
+    case SimdPath::kScalar:
+      computeScalar(q, X_WL);
+      break;
+  }
+}
+
+void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL, SimdPath path) const {
+  if (!simdPathAvailable(path)) path = bestSimdPath();
+  switch (path) {
+    case SimdPath::kAvx2:
+      computeAvx2(q, X_WL);
+      break;
+    case SimdPath::kSse2:
+      computeSse2(q, X_WL);
+      break;
+    case SimdPath::kScalar:
+      computeScalar(q, X_WL);
+      break;
   }
 }
 

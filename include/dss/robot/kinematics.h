@@ -8,8 +8,9 @@
 // the output array (pass all_links = true to compute every link). Joint axes along +-x, +-y,
 // +-z (nearly all real robots) take a short path with one sin/cos pair (computed two joints at
 // a time) and 12 products; constant frames turned by multiples of pi/2 (most URDF origins)
-// select and negate columns instead of multiplying by a rotation; poses are computed as pairs
-// of doubles (SIMD registers). A moving link without geometry that only leads to the next
+// select and negate columns instead of multiplying by a rotation; poses are computed a column
+// (four doubles) at a time, with AVX2 where the CPU has it (dss/core/simd_path.h: every path
+// gives the same poses, bit for bit). A moving link without geometry that only leads to the next
 // computed link (the x and y links of a planar joint, the position links of a floating one)
 // is not written: its translation is applied in that next step (updatedLinks() leaves it out).
 // Mimic joints read their leader's value: q = multiplier * q_leader + offset.
@@ -20,6 +21,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "dss/core/simd_path.h"
 #include "dss/robot/robot_model.h"
 
 namespace dss {
@@ -38,6 +40,11 @@ class Kinematics {
   /// joint_values: one value per active joint (RobotModel::active_joints order).
   /// X_WL: one pose per link (RobotModel::links order); only updatedLinks() are written.
   void computeLinkPoses(const double* joint_values, Eigen::Isometry3d* X_WL) const;
+  /// The same on a given instruction-set path (tests compare them); an unavailable path
+  /// (simdPathAvailable) takes the best available one.
+  void computeLinkPoses(const double* joint_values, Eigen::Isometry3d* X_WL, SimdPath path) const;
+  /// The path computeLinkPoses takes (activeSimdPath() when constructed).
+  SimdPath simdPath() const { return path_; }
 
   /// Convenience (allocates): all links' poses, untouched entries identity.
   std::vector<Eigen::Isometry3d> linkPoses(const std::vector<double>& joint_values) const;
@@ -62,12 +69,11 @@ class Kinematics {
     kTransAxis,
     kBall  // four values from q_index: a quaternion (x, y, z, w), normalised
   };
-  /// Two doubles in one SIMD register (SSE2, NEON): a 4x4 column-major pose is 8 of them.
-  using Pair = double __attribute__((vector_size(16)));
   struct Step {
     /// The constant transform from ref to the joint frame, as the 4x4 product needs it: m[j][i]
-    /// holds entry (i, j) of [R_c | p_c] twice (column j = 3 is the translation).
-    Pair m[4][3];
+    /// holds entry (i, j) of [R_c | p_c] (column j = 3 is the translation) four times, so that
+    /// the product loads it as a vector of any width.
+    alignas(32) double m[4][3][4];
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int link;
     int ref;            // computed link whose pose this one starts from; -1: the base pose
@@ -80,7 +86,7 @@ class Kinematics {
     /// the product is sign[j] times column col[j] of the reference pose, with no sum.
     bool perm;
     int col[3];
-    Pair sign[3];
+    alignas(32) double sign[3][4];
     Motion motion;
     /// Translations along the columns of the pose (after the constant frame, before the
     /// motion): the steps of links that nothing else needs, folded into this one (the x and y of
@@ -96,6 +102,13 @@ class Kinematics {
   };
 
   static void setConstantFrame(Step* s, const Eigen::Isometry3d& X);
+  /// computeLinkPoses with a column type: four doubles as a vector (SSE2 or AVX2, by the
+  /// function it is inlined in) or as a plain struct (the scalar path).
+  template <class Column>
+  void run(const double* q, Eigen::Isometry3d* X_WL) const;
+  void computeScalar(const double* q, Eigen::Isometry3d* X_WL) const;
+  void computeSse2(const double* q, Eigen::Isometry3d* X_WL) const;
+  void computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const;
   /// Folds axis-aligned translation steps of links that are not wanted into the step that
   /// follows them (Step::shifts), where that step starts from their pose with an identity frame.
   void foldTranslations(const std::vector<char>& wanted);
@@ -114,6 +127,7 @@ class Kinematics {
   std::size_t num_links_ = 0;
   std::size_t num_active_ = 0;
   Eigen::Isometry3d X_WR_ = Eigen::Isometry3d::Identity();
+  SimdPath path_ = activeSimdPath();
 };
 
 /// The sine and cosine that Kinematics uses (inlined there; exposed for tests): within a
