@@ -341,6 +341,10 @@ template <>
 __attribute__((always_inline)) inline PairColumn loadColumn<PairColumn>(const double* p) {
   return {loadPair(p), loadPair(p + 2)};
 }
+// The fourth element (w) of a column.
+__attribute__((always_inline)) inline void setLast(Quad& v, double w) { v[3] = w; }
+__attribute__((always_inline)) inline void setLast(PairColumn& v, double w) { v.hi[1] = w; }
+__attribute__((always_inline)) inline void setLast(ScalarQuad& v, double w) { v.v[3] = w; }
 template <class Column>
 __attribute__((always_inline)) inline void storeColumn(double* p, Column v) {
   std::memcpy(p, &v, sizeof v);
@@ -493,10 +497,14 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
         break;
       }
     }
-    // The bottom row is written exactly (0 0 0 1), whatever the products gave it.
+    // The bottom row is written exactly (0 0 0 1), whatever the products gave it: set in the
+    // columns before they are stored (a separate store into a column just stored would make a
+    // later load of the whole column wait for both).
     double* X = X_WL[s.link].matrix().data();
-    for (int k = 0; k < 4; ++k) storeColumn(X + 4 * k, c[k]);
-    X[3] = 0.0, X[7] = 0.0, X[11] = 0.0, X[15] = 1.0;
+    for (int k = 0; k < 4; ++k) {
+      setLast(c[k], k == 3 ? 1.0 : 0.0);
+      storeColumn(X + 4 * k, c[k]);
+    }
     prev_link = s.link;
   }
 }
