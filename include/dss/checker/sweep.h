@@ -101,24 +101,23 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   const std::vector<Aabb>& boxes = model.obstacleBoxes();
   const std::vector<Obb>& obbs = model.obstacleObbs();
   const ClearanceGrid& grid = model.clearanceGrid();
-  // World centres of the slot spheres, once per state (per-thread scratch, no allocation after
-  // the first call with a model this size). The vector and the slot count are read once:
-  // inside the loops the compiler would reload both after every store.
+  // World centres of the slot spheres, each computed as the robot-scene loop reaches its slot
+  // (a collision found there leaves the rest uncomputed); the self pairs use them all
+  // (per-thread scratch, no allocation after the first call with a model this size). The
+  // vector and the slot count are read once: inside the loops the compiler would reload both
+  // after every store.
   thread_local std::vector<Eigen::Vector3d> center_store, element_store;
   const std::size_t num_slots = model.slots().size();
   if (center_store.size() < num_slots) center_store.resize(num_slots);
   Eigen::Vector3d* const centers = center_store.data();
   const Slot* const slots = model.slots().data();
-  for (std::size_t k = 0; k < num_slots; ++k) {
-    const Eigen::Isometry3d& X = X_WL[linkOf(slots[k])];
-    centers[k] = X.linear() * slotCenter(slots[k]) + X.translation();
-  }
   // Robot vs scene.
   for (std::size_t k = 0; k < num_slots; ++k) {
     const Slot& s = slots[k];
+    const Eigen::Isometry3d& X = X_WL[linkOf(s)];
+    centers[k] = X.linear() * slotCenter(s) + X.translation();
     const std::size_t nb = s.obstacles.size();
     if (nb == 0) continue;
-    const Eigen::Isometry3d& X = X_WL[linkOf(s)];
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid.clear(c, r)) continue;
