@@ -52,6 +52,7 @@
 
 #include "benchmark_log.h"
 #include "cli.h"
+#include "dss/core/simd_path.h"
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/robot/joint_states_csv.h"
@@ -405,6 +406,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["validity_checks"] = counters.checks;
   j["motion_checks"] = dss::motionChecks(*mv);
   j["checker"] = checker->checker().name();
+  j["simd"] = dss::simdPathName(dss::activeSimdPath());
   if (timed) j["checking_time_s"] = timed->seconds();
   j["planner"] = a.planner;
   j["motion"] = a.motion;

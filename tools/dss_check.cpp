@@ -19,6 +19,7 @@
 
 #include "cli.h"
 #include "dss/checker/fcl_checker.h"
+#include "dss/core/simd_path.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/robot/joint_states_csv.h"
 #include "dss/scene/scene_loader.h"
@@ -361,6 +362,7 @@ int run(int argc, char** argv) {
     j["us_per_state_min"] = per_state[k].empty() ? 0.0 : per_state[k].front();
     j["timer"] = threads <= 1 ? "thread CPU time (wall time in us_per_state_wall)" : "wall time";
     j["threads"] = threads;
+    j["simd"] = dss::simdPathName(p.model->kinematics().simdPath());
     j["repetitions"] = repeat;
     j["pair_tests_per_state"] = st.empty() ? 0.0 : double(c.pair_tests) / double(c.checks);
     j["cap_hits"] = c.cap_hits;
