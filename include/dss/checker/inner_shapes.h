@@ -90,38 +90,52 @@ namespace detail {
 /// axis so far shows the overlap it needs.
 template <class Column>
 __attribute__((always_inline)) inline BoxStage boxStagesInA(
-    const Eigen::Vector3d& t, const Eigen::Vector3d& ho, const Eigen::Vector3d& hbo,
+    const Eigen::Vector3d& t_in, const Eigen::Vector3d& ho, const Eigen::Vector3d& hbo,
     const Eigen::Vector3d& hi_in, const Eigen::Vector3d& hbi, double pad, Column&& column) {
-  const double tsum = t.cwiseAbs().sum();
-  const double margin_o = pad + 1e-9 * (ho.sum() + hbo.sum() + tsum) + 1e-12;
-  const Eigen::Vector3d hi = hi_in.array() + pad * 0.57735026918962573;
-  const double margin_i = 1e-9 * (hi.sum() + hbi.sum() + tsum) + 1e-300;
-  Eigen::Matrix3d R, A, Ao;  // A = |R|; Ao = |R| + 1e-12 (the outer test's)
+  // In scalars, each sum in the order obbApartInA and boxesTouch form it (their Eigen dot
+  // products and sums add the first two terms, then the third): a vector load of values just
+  // stored one by one would wait for both stores.
+  const double t[3] = {t_in[0], t_in[1], t_in[2]};
+  const double at[3] = {std::abs(t[0]), std::abs(t[1]), std::abs(t[2])};
+  const double tsum = (at[0] + at[1]) + at[2];
+  const double margin_o =
+      pad + 1e-9 * ((((ho[0] + ho[1]) + ho[2]) + ((hbo[0] + hbo[1]) + hbo[2])) + tsum) + 1e-12;
+  const double hi[3] = {hi_in[0] + pad * 0.57735026918962573, hi_in[1] + pad * 0.57735026918962573,
+                        hi_in[2] + pad * 0.57735026918962573};
+  const double margin_i =
+      1e-9 * ((((hi[0] + hi[1]) + hi[2]) + ((hbi[0] + hbi[1]) + hbi[2])) + tsum) + 1e-300;
+  double R[3][3], A[3][3], Ao[3][3];  // R(i, j) = R[i][j]; A = |R|; Ao = |R| + 1e-12
   bool touch = true;
   for (int j = 0; j < 3; ++j) {
-    R.col(j) = column(j);
-    A.col(j) = R.col(j).cwiseAbs();
-    Ao.col(j) = A.col(j).array() + 1e-12;
-    const double d = std::abs(t.dot(R.col(j)));
-    if (d > ho.dot(Ao.col(j)) + hbo[j] + margin_o) return BoxStage::kApart;
-    touch = touch && d < hi.dot(A.col(j)) + hbi[j] - margin_i;
+    const Eigen::Vector3d col = column(j);
+    for (int i = 0; i < 3; ++i) {
+      R[i][j] = col[i];
+      A[i][j] = std::abs(col[i]);
+      Ao[i][j] = A[i][j] + 1e-12;
+    }
+    const double d = std::abs((t[0] * R[0][j] + t[1] * R[1][j]) + t[2] * R[2][j]);
+    if (d > (((ho[0] * Ao[0][j] + ho[1] * Ao[1][j]) + ho[2] * Ao[2][j]) + hbo[j]) + margin_o)
+      return BoxStage::kApart;
+    touch =
+        touch && d < (((hi[0] * A[0][j] + hi[1] * A[1][j]) + hi[2] * A[2][j]) + hbi[j]) - margin_i;
   }
   for (int i = 0; i < 3; ++i) {
-    const double d = std::abs(t[i]);
-    if (d > ho[i] + hbo.dot(Ao.row(i)) + margin_o) return BoxStage::kApart;
-    touch = touch && d < hi[i] + hbi.dot(A.row(i)) - margin_i;
+    if (at[i] > (ho[i] + ((hbo[0] * Ao[i][0] + hbo[1] * Ao[i][1]) + hbo[2] * Ao[i][2])) + margin_o)
+      return BoxStage::kApart;
+    touch = touch &&
+            at[i] < (hi[i] + ((hbi[0] * A[i][0] + hbi[1] * A[i][1]) + hbi[2] * A[i][2])) - margin_i;
   }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double d = std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j));
-      const double rao = ho[i1] * Ao(i2, j) + ho[i2] * Ao(i1, j);
-      const double rbo = hbo[j1] * Ao(i, j2) + hbo[j2] * Ao(i, j1);
+      const double d = std::abs(t[i2] * R[i1][j] - t[i1] * R[i2][j]);
+      const double rao = ho[i1] * Ao[i2][j] + ho[i2] * Ao[i1][j];
+      const double rbo = hbo[j1] * Ao[i][j2] + hbo[j2] * Ao[i][j1];
       if (d > rao + rbo + margin_o) return BoxStage::kApart;
-      if (!touch || R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j) < 1e-24) continue;
-      const double rai = hi[i1] * A(i2, j) + hi[i2] * A(i1, j);
-      const double rbi = hbi[j1] * A(i, j2) + hbi[j2] * A(i, j1);
+      if (!touch || R[i1][j] * R[i1][j] + R[i2][j] * R[i2][j] < 1e-24) continue;
+      const double rai = hi[i1] * A[i2][j] + hi[i2] * A[i1][j];
+      const double rbi = hbi[j1] * A[i][j2] + hbi[j2] * A[i][j1];
       touch = d < rai + rbi - margin_i;
     }
   }
