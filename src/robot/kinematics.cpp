@@ -527,8 +527,8 @@ void Kinematics::computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const { r
 #endif
 #pragma GCC diagnostic pop
 
-void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) const {
-  switch (path_) {
+void Kinematics::computeOn(SimdPath path, const double* q, Eigen::Isometry3d* X_WL) const {
+  switch (path) {
     case SimdPath::kAvx2:
       computeAvx2(q, X_WL);
       break;
@@ -541,19 +541,12 @@ void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) cons
   }
 }
 
+void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL) const {
+  computeOn(path_, q, X_WL);
+}
+
 void Kinematics::computeLinkPoses(const double* q, Eigen::Isometry3d* X_WL, SimdPath path) const {
-  if (!simdPathAvailable(path)) path = bestSimdPath();
-  switch (path) {
-    case SimdPath::kAvx2:
-      computeAvx2(q, X_WL);
-      break;
-    case SimdPath::kSse2:
-      computeSse2(q, X_WL);
-      break;
-    case SimdPath::kScalar:
-      computeScalar(q, X_WL);
-      break;
-  }
+  computeOn(simdPathAvailable(path) ? path : bestSimdPath(), q, X_WL);
 }
 
 std::vector<Eigen::Isometry3d> Kinematics::linkPoses(const std::vector<double>& q) const {

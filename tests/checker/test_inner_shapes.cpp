@@ -138,6 +138,21 @@ Eigen::Isometry3d randomPose(std::mt19937_64& rng, double spread) {
 
 }  // namespace
 
+namespace {
+// Both boxes turned about z only (their z edges exactly parallel, as a mobile base against
+// upright shelves), B then tilted about x by a tiny angle when `tilt` (nearly parallel edges).
+void turnAboutZ(std::mt19937_64& rng, bool tilt, Eigen::Isometry3d* XA, Eigen::Isometry3d* XB) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  XA->linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  XB->linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  if (tilt)
+    XB->linear() =
+        XB->linear() * Eigen::AngleAxisd(std::ldexp(u(rng), -static_cast<int>(u(rng) * 60)),
+                                         Eigen::Vector3d::UnitX())
+                           .toRotationMatrix();
+}
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(inner_shapes)
 
 // boxesTouch against exact DSS with the same padding: never "touch" for a pair that exact DSS
@@ -154,15 +169,7 @@ BOOST_AUTO_TEST_CASE(boxes_touch_only_when_exact_dss_agrees) {
     const Eigen::Vector3d hb = scale * Eigen::Vector3d(0.05 + u(rng), 0.05 + u(rng), 0.05 + u(rng));
     Eigen::Isometry3d XA = randomPose(rng, scale), XB = randomPose(rng, scale);
     const int kind = i % 3;
-    if (kind > 0) {
-      XA.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      XB.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      if (kind == 2)
-        XB.linear() =
-            XB.linear() * Eigen::AngleAxisd(std::ldexp(u(rng), -static_cast<int>(u(rng) * 60)),
-                                            Eigen::Vector3d::UnitX())
-                              .toRotationMatrix();
-    }
+    if (kind > 0) turnAboutZ(rng, kind == 2, &XA, &XB);
     const double pad = i % 4 == 0 ? 0.0 : 0.1 * scale * u(rng);
     const bool touch =
         dss::boxesTouch(XA.linear(), XA.translation(), ha, XB.linear(), XB.translation(), hb, pad);
@@ -280,15 +287,7 @@ BOOST_AUTO_TEST_CASE(box_stages_answer_as_the_two_stages_in_turn) {
     const Eigen::Vector3d hbi = i % 7 == 0 ? Eigen::Vector3d(hbo * 0.999) : hbo;
     Eigen::Isometry3d XA = randomPose(rng, scale), XB = randomPose(rng, scale);
     const int kind = i % 4;
-    if (kind == 1 || kind == 2) {
-      XA.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      XB.linear() = Eigen::AngleAxisd(u(rng) * 6.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      if (kind == 2)
-        XB.linear() =
-            XB.linear() * Eigen::AngleAxisd(std::ldexp(u(rng), -static_cast<int>(u(rng) * 60)),
-                                            Eigen::Vector3d::UnitX())
-                              .toRotationMatrix();
-    }
+    if (kind == 1 || kind == 2) turnAboutZ(rng, kind == 2, &XA, &XB);
     if (kind == 3) XB.linear().setIdentity();  // an axis-aligned obstacle
     const double pad = i % 3 == 0 ? 0.0 : 0.1 * scale * u(rng);
     if (i % 2) {  // near contact: along the centre line, to a gap around the padding

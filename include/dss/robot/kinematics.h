@@ -106,6 +106,8 @@ class Kinematics {
   /// function it is inlined in) or as a plain struct (the scalar path).
   template <class Column>
   void run(const double* q, Eigen::Isometry3d* X_WL) const;
+  /// The path's function (an available path).
+  void computeOn(SimdPath path, const double* q, Eigen::Isometry3d* X_WL) const;
   void computeScalar(const double* q, Eigen::Isometry3d* X_WL) const;
   void computeSse2(const double* q, Eigen::Isometry3d* X_WL) const;
   void computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const;
