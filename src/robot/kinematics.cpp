@@ -115,11 +115,11 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
   s->perm = permutation;
   for (int j = 0; j < 3; ++j) {
     s->col[j] = permutation ? perm[j] : j;
-    std::fill_n(s->sign[j], 4, permutation ? R_c(perm[j], j) : 1.0);
+    s->sign[j] = permutation ? R_c(perm[j], j) : 1.0;
   }
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) std::fill_n(s->m[j][i], 4, R_c(i, j));
-    std::fill_n(s->m[3][i], 4, p_c[i]);
+    for (int j = 0; j < 3; ++j) s->m[j][i] = R_c(i, j);
+    s->m[3][i] = p_c[i];
   }
 }
 
@@ -222,7 +222,7 @@ void Kinematics::foldTranslations(const std::vector<char>& wanted) {
   auto identityFrame = [](const Step& s) {
     if (!s.identity_R) return false;
     for (int i = 0; i < 3; ++i)
-      if (s.m[3][i][0] != 0.0) return false;
+      if (s.m[3][i] != 0.0) return false;
     return true;
   };
   std::vector<int> uses(wanted.size(), 0);  // steps starting from each link's pose
@@ -298,10 +298,6 @@ inline ScalarQuad operator*(ScalarQuad a, double f) {
   for (int i = 0; i < 4; ++i) a.v[i] *= f;
   return a;
 }
-inline ScalarQuad operator*(ScalarQuad a, const ScalarQuad& b) {
-  for (int i = 0; i < 4; ++i) a.v[i] *= b.v[i];
-  return a;
-}
 inline ScalarQuad operator*(double f, ScalarQuad a) {
   for (int i = 0; i < 4; ++i) a.v[i] = f * a.v[i];
   return a;
@@ -319,9 +315,6 @@ inline PairColumn operator-(const PairColumn& a, const PairColumn& b) {
   return {a.lo - b.lo, a.hi - b.hi};
 }
 inline PairColumn operator*(const PairColumn& a, double f) { return {a.lo * f, a.hi * f}; }
-inline PairColumn operator*(const PairColumn& a, const PairColumn& b) {
-  return {a.lo * b.lo, a.hi * b.hi};
-}
 inline PairColumn operator*(double f, const PairColumn& a) { return {f * a.lo, f * a.hi}; }
 inline PairColumn& operator+=(PairColumn& a, const PairColumn& b) { return a = a + b; }
 
@@ -405,15 +398,11 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
     if (s.identity_R) {
       c[0] = a[0], c[1] = a[1], c[2] = a[2];
     } else if (s.perm) {
-      for (int j = 0; j < 3; ++j)
-        c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * loadColumn<Column>(s.sign[j]);
+      for (int j = 0; j < 3; ++j) c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * s.sign[j];
     } else {
-      for (int j = 0; j < 3; ++j)
-        c[j] = a[0] * loadColumn<Column>(s.m[j][0]) + a[1] * loadColumn<Column>(s.m[j][1]) +
-               a[2] * loadColumn<Column>(s.m[j][2]);
+      for (int j = 0; j < 3; ++j) c[j] = a[0] * s.m[j][0] + a[1] * s.m[j][1] + a[2] * s.m[j][2];
     }
-    c[3] = ((a[3] + a[0] * loadColumn<Column>(s.m[3][0])) + a[1] * loadColumn<Column>(s.m[3][1])) +
-           a[2] * loadColumn<Column>(s.m[3][2]);
+    c[3] = ((a[3] + a[0] * s.m[3][0]) + a[1] * s.m[3][1]) + a[2] * s.m[3][2];
     // Rotation about axis k mixes columns k + 1 and k + 2: x' = cos x + sin y, y' = cos y - sin x.
     auto rotate = [&c](int ca, int cb, double sv, double cv) {
       const Column x = c[ca], y = c[cb];

@@ -71,9 +71,8 @@ class Kinematics {
   };
   struct Step {
     /// The constant transform from ref to the joint frame, as the 4x4 product needs it: m[j][i]
-    /// holds entry (i, j) of [R_c | p_c] (column j = 3 is the translation) four times, so that
-    /// the product loads it as a vector of any width.
-    alignas(32) double m[4][3][4];
+    /// holds entry (i, j) of [R_c | p_c] (column j = 3 is the translation).
+    double m[4][3];
     Eigen::Vector3d axis;  // for kRotAxis / kTransAxis
     int link;
     int ref;            // computed link whose pose this one starts from; -1: the base pose
@@ -86,7 +85,7 @@ class Kinematics {
     /// the product is sign[j] times column col[j] of the reference pose, with no sum.
     bool perm;
     int col[3];
-    alignas(32) double sign[3][4];
+    double sign[3];
     Motion motion;
     /// Translations along the columns of the pose (after the constant frame, before the
     /// motion): the steps of links that nothing else needs, folded into this one (the x and y of
