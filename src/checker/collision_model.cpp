@@ -172,7 +172,9 @@ void CollisionModel::buildSlots() {
       e.has_inner_box =
           innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h) &&
           8.0 * e.inner_box_h.prod() >= balls_volume;
-      e.inner_box_centred = e.has_inner_box && e.inner_box_c == e.box_center_S;
+      if (e.has_inner_box && e.inner_box_c != e.box_center_S)
+        throw std::logic_error("CollisionModel: the inner box of link " + link.name +
+                               " is not centred on its local box");
       lo = lo.cwiseMin(e.center_L - Eigen::Vector3d::Constant(e.radius));
       hi = hi.cwiseMax(e.center_L + Eigen::Vector3d::Constant(e.radius));
       elements_.push_back(e);

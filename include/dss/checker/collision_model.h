@@ -84,13 +84,11 @@ class CollisionModel {
     static constexpr int kMaxInner = 4;
     int num_inner = 0;
     Eigen::Vector4d inner_S[kMaxInner];
-    /// Inner box (inner_shapes.h), axis-aligned in the shape frame: centre, half extents.
+    /// Inner box (inner_shapes.h), axis-aligned in the shape frame: centre (the local box's:
+    /// the sweep tests both boxes in one pass, boxStages), half extents.
     bool has_inner_box = false;
     Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
     Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
-    /// The inner box shares the local box's centre (exactly): the sweep tests both boxes in one
-    /// pass (boxStages).
-    bool inner_box_centred = false;
   };
   /// A link with geometry.
   struct Slot {

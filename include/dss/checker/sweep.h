@@ -133,7 +133,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       if (opt.obb_stage) {
         const Obb& ob = obbs[o];
         const Eigen::Vector3d box_c = X_WS * el.box_center_S;
-        if (inner && el.inner_box_centred) {
+        if (inner && el.has_inner_box) {
           const BoxStage v =
               ob.axis_aligned
                   ? boxStagesAxisAligned(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.c,
