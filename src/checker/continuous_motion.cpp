@@ -85,7 +85,7 @@ Scratch& scratch() {
 // Every point of a set whose path is bounded by b stays within this of its chord (see
 // continuous_motion.h), with a rounding margin.
 double chordPadding(const MotionBound& b) {
-  return 0.5 * b.length * std::min(1.0, b.turn) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
+  return std::min(0.5 * b.length, 0.125 * b.bend) * (1.0 + 1e-9) + (b.length > 0 ? 1e-12 : 0.0);
 }
 
 // Grows [lo, hi] (in the frame F: x_F = Rf^T (x_W - o)) by the element box (centre bc, half

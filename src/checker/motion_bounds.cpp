@@ -101,24 +101,30 @@ double quaternionAngle(const double* a, const double* b) {
 
 MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1) {
   MotionBound b;
-  for (const ChainTerm& t : chain) {
+  // From the root down (the chain is nearest first): `above` is the revolute angle of the
+  // joints above the current one, W_<j in motion_bounds.h.
+  double above = 0.0;
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const ChainTerm& t = *it;
     if (t.active < 0) continue;
+    double dq;
     if (t.ball) {
       const double* a = q0 + t.active;
       const double* c = q1 + t.active;
       // The same quaternion at both ends does not turn (a multi-DOF joint the motion holds).
       if (a[0] == c[0] && a[1] == c[1] && a[2] == c[2] && a[3] == c[3]) continue;
-      const double angle = quaternionAngle(q0 + t.active, q1 + t.active);
-      b.length += angle * t.reach;
-      b.turn += angle;
-      continue;
+      dq = quaternionAngle(q0 + t.active, q1 + t.active);
+    } else {
+      dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
     }
-    const double dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
     if (t.prismatic) {
       b.length += dq;
+      b.bend += 2.0 * dq * above;
     } else {
       b.length += dq * t.reach;
+      b.bend += dq * t.reach * (2.0 * above + dq);
       b.turn += dq;
+      above += dq;
     }
   }
   return b;

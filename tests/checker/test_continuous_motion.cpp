@@ -15,7 +15,10 @@
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/continuous_motion.h"
 #include "dss/checker/dss_checker.h"
+#include "dss/checker/motion_bounds.h"
+#include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/checker_fixtures.h"
 #include "support/shared_data.h"
 
 namespace {
@@ -26,9 +29,15 @@ struct Arm {
   std::shared_ptr<const dss::DssChecker> checker;
 };
 
-Arm loadArm(const std::string& urdf, const std::string& srdf, const std::string& scene_file) {
+Arm loadArm(const std::string& urdf, const std::string& srdf, const std::string& scene_file,
+            const std::string& request_file = "") {
   Arm a;
   a.robot = dss::loadRobot(urdf, srdf);
+  if (!request_file.empty()) {  // a planar or floating base, bounded by the request's workspace
+    const dss::PlanRequest r = dss::loadPlanRequestYaml(request_file);
+    BOOST_REQUIRE(r.workspace.has_value());
+    a.robot = dss::withWorkspace(a.robot, r.workspace->first, r.workspace->second);
+  }
   a.model = dss::setupModel(a.robot, scene_file.empty() ? dss::Scene{} : dss::loadScene(scene_file),
                             "", {})
                 .model;
@@ -46,10 +55,22 @@ std::vector<double> fullJoints(const dss::CollisionModel& m, const std::vector<d
 std::vector<double> randomGroupState(const Arm& a, std::mt19937_64& rng) {
   std::vector<double> g;
   for (int act : a.model->groupActive()) {
-    const auto& j = a.robot.model->joints[a.robot.model->active_joints[act]];
-    g.push_back(std::uniform_real_distribution<double>(j.limits.lower, j.limits.upper)(rng));
+    const auto [lo, hi] = dss_test::sampleRange(*a.robot.model, act);
+    g.push_back(std::uniform_real_distribution<double>(lo, hi)(rng));
   }
   return g;
+}
+
+// The state at fraction t of the straight motion q0 -> q1 as the continuous check moves it:
+// joint values linearly, a ball joint's quaternion by slerp along the shorter arc.
+void interpolate(const dss::RobotModel& robot, const std::vector<double>& q0,
+                 const std::vector<double>& q1, double t, std::vector<double>* qt) {
+  for (std::size_t i = 0; i < qt->size(); ++i) (*qt)[i] = q0[i] + t * (q1[i] - q0[i]);
+  for (std::size_t a = 0; a < robot.numActiveJoints(); ++a) {
+    const dss::RobotJoint& j = robot.joints[robot.active_joints[a]];
+    if (j.type == dss::JointType::kBall && j.active_index == int(a))
+      dss::slerpQuaternion(q0.data() + a, q1.data() + a, t, qt->data() + a);
+  }
 }
 
 double distToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -89,8 +110,7 @@ void checkPaddings(const Arm& a, std::uint64_t seed) {
       m.kinematics().computeLinkPoses(q1.data(), X1.data());
       std::vector<double> qt(q0.size());
       for (int step = 1; step < 64; ++step) {
-        const double t = step / 64.0;
-        for (std::size_t i = 0; i < qt.size(); ++i) qt[i] = q0[i] + t * (q1[i] - q0[i]);
+        interpolate(m.robot(), q0, q1, step / 64.0, &qt);
         m.kinematics().computeLinkPoses(qt.data(), Xt.data());
         for (std::size_t sl = 0; sl < m.slots().size(); ++sl) {
           const auto& s = m.slots()[sl];
@@ -99,7 +119,7 @@ void checkPaddings(const Arm& a, std::uint64_t seed) {
             const Eigen::Vector3d pL = s.center_L + s.radius * u;
             const double d = distToSegment(Xt[s.link] * pL, X0[s.link] * pL, X1[s.link] * pL);
             ++checked;
-            if (d > pad[sl]) ++violations;
+            if (!(d <= pad[sl])) ++violations;  // a NaN is one
             if (pad[sl] > 0) worst = std::max(worst, d / pad[sl]);
           }
         }
@@ -109,7 +129,7 @@ void checkPaddings(const Arm& a, std::uint64_t seed) {
         std::vector<double> qh(q0.size());
         double turn = 0.0;
         for (std::size_t i = 0; i < q0.size(); ++i) turn += std::abs(q1[i] - q0[i]);
-        for (std::size_t i = 0; i < q0.size(); ++i) qh[i] = 0.5 * (q0[i] + q1[i]);
+        interpolate(m.robot(), q0, q1, 0.5, &qh);
         cmc.paddings(q0.data(), qh.data(), pad_half.data());
         for (std::size_t sl = 0; sl < m.slots().size(); ++sl)
           if (pad[sl] > 1e-9)
@@ -187,6 +207,24 @@ BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_moving_link) {
 BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_moving_panda_link, DSS_NEEDS_SHARED) {
   const std::string panda = dss_test::sharedPath("robots/panda");
   checkPaddings(loadArm(panda + "/panda.urdf", panda + "/panda.srdf", ""), 6);
+}
+
+BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_a_ur5_link, DSS_NEEDS_SHARED) {
+  const std::string ur5 = dss_test::sharedPath("robots/ur5_robotiq85");
+  checkPaddings(loadArm(ur5 + "/ur5.urdf", ur5 + "/ur5.srdf", ""), 10);
+}
+
+// Planar (x, y prismatic under a turn) and floating bases (slides and a slerped quaternion).
+BOOST_AUTO_TEST_CASE(paddings_bound_every_point_of_moving_bases) {
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/";
+  checkPaddings(loadArm(dir + "dss_mobile_base/dss_mobile_base.urdf",
+                        dir + "dss_mobile_base/dss_mobile_base.srdf", "",
+                        dir + "dss_mobile_base/scenes/aisle_request.yaml"),
+                11);
+  checkPaddings(loadArm(dir + "dss_free_flyer/dss_free_flyer.urdf",
+                        dir + "dss_free_flyer/dss_free_flyer.srdf", "",
+                        dir + "dss_free_flyer/scenes/window_request.yaml"),
+                12);
 }
 
 BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling) {

@@ -44,6 +44,18 @@ const char* kSliderUrdf = R"(<robot name="slider">
     <mimic joint="finger_joint" multiplier="-2" offset="0.05"/></joint>
 </robot>)";
 
+// Two links turning about parallel z axes (a planar arm): aligned, a point at the tip
+// accelerates by exactly L1 w1^2 + L2 (w1 + w2)^2, which the bend bound reaches.
+const char* kPlanarUrdf = R"(<robot name="planar">
+  <link name="base"/>
+  <link name="upper"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <link name="fore"><collision><origin xyz="0.2 0 0"/><geometry><sphere radius="0.001"/></geometry></collision></link>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0.5 0 0"/>
+    <axis xyz="0 0 1"/><limit lower="-0.3" upper="0.3" effort="1" velocity="1"/></joint>
+</robot>)";
+
 dss::RobotModel sliderRobot() { return dss::loadUrdfString(kSliderUrdf, "slider.urdf", "."); }
 
 // Points of a link's geometry in the link frame: the vertices of its hulls, and for a primitive
@@ -79,6 +91,7 @@ double rotationAngle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).ang
 struct Totals {
   std::size_t point_paths = 0;  // (point, link, ancestor, motion) paths compared
   double tightest = 0.0;        // largest sampled path length / bound
+  double tightest_bend = 0.0;   // largest sampled second difference / bend
   std::size_t violations = 0;
   std::string first_violation;
 };
@@ -158,10 +171,20 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group,
       auto inStop = [&](int s) {
         return c.stop < 0 ? X[s][c.link] : Eigen::Isometry3d(X[s][c.stop].inverse() * X[s][c.link]);
       };
-      std::vector<Eigen::Vector3d> prev(c.p_L.size());
+      std::vector<Eigen::Vector3d> prev(c.p_L.size()), prev2(c.p_L.size()), first(c.p_L.size()),
+          last(c.p_L.size());
       std::vector<double> path(c.p_L.size(), 0.0);
       Eigen::Isometry3d X0 = inStop(0);
-      for (std::size_t i = 0; i < c.p_L.size(); ++i) prev[i] = X0 * c.p_L[i];
+      const Eigen::Isometry3d X1 = inStop(steps);
+      for (std::size_t i = 0; i < c.p_L.size(); ++i) {
+        prev[i] = first[i] = X0 * c.p_L[i];
+        last[i] = X1 * c.p_L[i];
+      }
+      // The second difference (p(t+h) - 2 p(t) + p(t-h)) / h^2 is an average of p'' over
+      // [t-h, t+h]; its rounding (positions of about a metre, h = 1 / steps) is covered by
+      // the absolute tolerance.
+      const double h2 = 1.0 / (double(steps) * steps);
+      const double bend_tol = 1e-9 * (1.0 + b.bend) + 64.0 * 1e-16 / h2;
       const std::string what = robot.links[c.link].name + " relative to " +
                                (c.stop < 0 ? std::string("the world") : robot.links[c.stop].name) +
                                ", motion " + std::to_string(k) + ": ";
@@ -178,12 +201,27 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group,
         if (!(angle <= b.turn + turn_tol))
           fail("turned by " + std::to_string(angle) + " beyond the bound " +
                std::to_string(b.turn));
+        const double t = double(s) / steps;
         for (std::size_t i = 0; i < c.p_L.size(); ++i) {
           const Eigen::Vector3d p = X_SL * c.p_L[i];
           if (!(p.norm() <= c.reach_at_stop * (1.0 + 1e-12) + 1e-12))
             fail("a point at " + std::to_string(p.norm()) + " beyond the reach " +
                  std::to_string(c.reach_at_stop));
+          if (s >= 2) {
+            const double accel = (p - 2.0 * prev[i] + prev2[i]).norm() / h2;
+            if (!(accel <= b.bend + bend_tol))
+              fail("a point's second difference " + std::to_string(accel) + " beyond the bend " +
+                   std::to_string(b.bend));
+            if (b.bend > 1e-6)
+              totals.tightest_bend = std::max(totals.tightest_bend, accel / b.bend);
+          }
+          // The linear-interpolation error |p''| / 8 the continuous check pads by.
+          const double off = (p - ((1.0 - t) * first[i] + t * last[i])).norm();
+          if (!(off <= 0.125 * b.bend * (1.0 + 1e-9) + 1e-12))
+            fail("a point " + std::to_string(off) +
+                 " off its chord, beyond bend / 8 = " + std::to_string(0.125 * b.bend));
           path[i] += (p - prev[i]).norm();
+          prev2[i] = prev[i];
           prev[i] = p;
         }
       }
@@ -216,16 +254,25 @@ BOOST_AUTO_TEST_CASE(no_point_of_our_arm_outruns_its_motion_bound) {
   const dss::RobotModel& robot = *r.model;
   const Totals world = checkBounds(robot, allActive(robot), robot.defaultState(), 3, 60, 256);
   BOOST_TEST_MESSAGE("dss_arm7: " << world.point_paths << " point paths, largest path / bound "
-                                  << world.tightest);
+                                  << world.tightest << ", second difference / bend "
+                                  << world.tightest_bend);
   BOOST_TEST(world.point_paths > 100000u);
   // The bound is not vacuous: on single-joint motions a point near the reach comes close.
   BOOST_TEST(world.tightest > 0.5);
+  BOOST_TEST(world.tightest_bend > 0.5);
   // A group without the first two joints, held away from zero.
   std::vector<double> held = robot.defaultState();
   held[0] = 1.1;
   held[1] = -0.7;
   const Totals part = checkBounds(robot, {2, 3, 4, 5, 6}, held, 4, 30, 256);
   BOOST_TEST(part.point_paths > 10000u);
+}
+
+BOOST_AUTO_TEST_CASE(the_bend_bound_is_reached_by_a_planar_arm) {
+  const dss::RobotModel robot = dss::loadUrdfString(kPlanarUrdf, "planar.urdf", ".");
+  const Totals t = checkBounds(robot, allActive(robot), std::vector<double>(2, 0.0), 8, 200, 256);
+  BOOST_TEST_MESSAGE("planar arm: second difference / bend " << t.tightest_bend);
+  BOOST_TEST(t.tightest_bend > 0.97);
 }
 
 BOOST_AUTO_TEST_CASE(prismatic_and_mimic_joints_held_outside_their_limits) {
@@ -237,6 +284,8 @@ BOOST_AUTO_TEST_CASE(prismatic_and_mimic_joints_held_outside_their_limits) {
   // Every joint moving within its limits.
   const Totals all = checkBounds(robot, allActive(robot), std::vector<double>(3, 0.0), 5, 120, 512);
   BOOST_TEST(all.point_paths > 10000u);
+  BOOST_TEST_MESSAGE("slider: second difference / bend " << all.tightest_bend);
+  BOOST_TEST(all.tightest_bend > 0.2);
   // Only the arm turning, the carriage and the fingers held beyond their limits: the reach of
   // the fingers about the turning joint must include their held displacement.
   std::vector<double> held(3, 0.0);

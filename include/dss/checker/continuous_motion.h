@@ -5,14 +5,16 @@
 //
 // Over a sub-motion [t0, t1], every point p of a slot moves along a path p(t) with
 //   |p'|  <= V = sum over moving joints j above it of |dq_j| reach_j + sum of prismatic |dq_j|
-//   |p''| <= 4 W V,   W = sum of revolute |dq_j| above it   (dq over the sub-motion, t in [0, 1])
-// (motion_bounds.h). So p(t) lies within
-//   pad = min(V / 2, W V / 2)
+//   |p''| <= B = sum over revolute j of |dq_j| reach_j (2 W_<j + |dq_j|)
+//                + 2 sum over prismatic j of |dq_j| W_<j   (at most 2 W V)
+// where W_<j is the revolute |dq| above joint j and W the total (dq over the sub-motion, t in
+// [0, 1]; motion_bounds.h). So p(t) lies within
+//   pad = min(V / 2, B / 8)
 // of the chord (1 - t) p(t0) + t p(t1) (the linear-interpolation error bound |p''| / 8 for the
 // quadratic term; the nearer end point for the linear one), and every intermediate pose of an
 // element lies inside conv(X_t0(S) U X_t1(S)) grown by pad: a padded swept hull, decided by
 // DSS (dss/core/any_shape_sweep.h). The quadratic term makes the bound shrink four-fold per
-// halving once W < 1 rad.
+// halving.
 //
 // Work is kept per unit (element vs obstacle, element vs element of a self pair): a
 // sub-motion tests its units in order until one is not cleared; that unit and the ones not yet

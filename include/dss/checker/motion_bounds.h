@@ -64,11 +64,29 @@ double quaternionAngle(const double* a, const double* b);
 void slerpQuaternion(const double* a, const double* b, double t, double* out);
 
 /// Over the straight joint-space motion q0 -> q1 (active joint values; a ball joint's
-/// quaternion moves by slerp along the shorter arc): `length` bounds the path of every point
-/// of the set (V above), `turn` is the revolute angle above it (W).
+/// quaternion moves by slerp along the shorter arc, a turn about a fixed axis at a constant
+/// rate): `length` bounds the path of every point of the set (V above), `turn` is the revolute
+/// angle above it (W), and `bend` bounds the second derivative |p''| of every point's path
+/// p(t), t in [0, 1].
+///
+/// The bend: number the moving joints from the root down, dq_j their travel over the motion,
+/// R_j their reach, a_j their (unit) axes, o_j their origins, W_<j the revolute travel above j.
+/// A revolute joint adds dq_j a_j x (p - o_j) to p', a prismatic one dq_j a_j. Differentiating,
+/// an axis turns with the joints above it (|a_j'| <= W_<j), and p - o_j moves with the
+/// relative velocity of p about o_j: the joints above j turn it about o_j with the angular
+/// velocity w of the link above j, the joints from j down move it as they move p (at most
+/// sum over revolute k >= j of dq_k R_k, plus the prismatic travel below j). The two turns by
+/// w together give (w x a_j) x r + a_j x (w x r) = w x (a_j x r) (Jacobi), r = p - o_j, at
+/// most W_<j R_j. A prismatic joint's own axis turns (dq_j W_<j), and the revolute joints
+/// above it turn its slide (dq_j W_<j again, Coriolis). Summing,
+///   |p''| <= sum over revolute j of dq_j R_j (2 W_<j + dq_j)
+///          + 2 sum over prismatic j of dq_j W_<j
+/// which is at most 2 W V, exactly R dq^2 for one revolute joint (a circle), and exactly
+/// L1 w1^2 + L2 (w1 + w2)^2 for the tip of an outstretched planar two-link arm.
 struct MotionBound {
   double length = 0.0;
   double turn = 0.0;
+  double bend = 0.0;
 };
 MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1);
 
