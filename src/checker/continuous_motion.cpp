@@ -72,7 +72,10 @@ struct Scratch {
   void release(int slot) {
     if (--refs[std::size_t(slot)] == 0) free_slots.push_back(slot);
   }
-  std::vector<double> pad, qa, qb;
+  // Per sub-motion: the travel of each active value (jointTravel), and each slot's padding,
+  // computed when a unit first needs it (pad_stamp == stamp).
+  std::vector<double> travel, pad, qa, qb;
+  std::vector<std::uint64_t> pad_stamp;
   std::vector<unsigned char> free_along;  // per self-pair table, for the current sub-motion
   std::vector<int> work;                  // unit indices, a stack of lists (see clear())
   std::vector<Interval> stack;
@@ -163,18 +166,28 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
 }
 
 void ContinuousMotionChecker::paddings(const double* qa, const double* qb, double* pad) const {
-  for (std::size_t k = 0; k < chains_.size(); ++k) {
-    pad[k] = chordPadding(motionBound(chains_[k], qa, qb));
-  }
+  std::vector<double> travel(checker_->model().robot().numActiveJoints());
+  jointTravel(qa, qb, travel.size(), balls_, travel.data());
+  for (std::size_t k = 0; k < chains_.size(); ++k)
+    pad[k] = chordPadding(motionBound(chains_[k], travel.data()));
 }
 
 bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* XA,
-                                        const Eigen::Isometry3d* XB, const double* pad,
-                                        bool may_defer, std::uint64_t* tests) const {
+                                        const Eigen::Isometry3d* XB, bool may_defer,
+                                        std::uint64_t* tests) const {
   const CollisionModel& m = checker_->model();
   const DssCheckerSettings& set = checker_->settings();
   const auto& el = m.elements();
   Scratch& sc = scratch();
+  // A slot's padding over the sub-motion, computed once per sub-motion.
+  auto pad = [&](int slot) {
+    const std::size_t k = std::size_t(slot);
+    if (sc.pad_stamp[k] != sc.stamp) {
+      sc.pad[k] = chordPadding(motionBound(chains_[k], sc.travel.data()));
+      sc.pad_stamp[k] = sc.stamp;
+    }
+    return sc.pad[k];
+  };
   // An element's sphere and shape poses over the sub-motion, computed once per sub-motion.
   auto swept = [&](int e) -> ElementSweep& {
     ElementSweep& s = sc.sweeps[std::size_t(e)];
@@ -184,7 +197,7 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     const Eigen::Isometry3d& X1 = XB[x.link];
     s.c0 = X0 * x.center_L, s.c1 = X1 * x.center_L;
     s.mid = 0.5 * (s.c0 + s.c1);
-    s.reach = 0.5 * (s.c1 - s.c0).norm() + x.radius + pad[x.slot];
+    s.reach = 0.5 * (s.c1 - s.c0).norm() + x.radius + pad(x.slot);
     s.has_poses = false;
     s.grid = -1;
     s.stamp = sc.stamp;
@@ -204,7 +217,7 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const auto& ea = el[u.a];
   ElementSweep& sa = swept(u.a);
   if (!u.self) {
-    const double p = pad[ea.slot] + set.scene_padding;
+    const double p = pad(ea.slot) + set.scene_padding;
     const double r = sa.reach + set.scene_padding;
     // One clearance-grid lookup clears the element against every obstacle at once.
     if (sa.grid < 0) sa.grid = m.clearanceGrid().clear(sa.mid, r) ? 1 : 0;
@@ -229,8 +242,8 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const PairFrame& f = pairs_[std::size_t(u.pair)];
   PairPads& pp = sc.pair_pads[std::size_t(u.pair)];
   if (pp.stamp != sc.stamp) {
-    pp.a = chordPadding(motionBound(f.chain_a, sc.qa.data(), sc.qb.data()));
-    pp.b = chordPadding(motionBound(f.chain_b, sc.qa.data(), sc.qb.data()));
+    pp.a = chordPadding(motionBound(f.chain_a, sc.travel.data()));
+    pp.b = chordPadding(motionBound(f.chain_b, sc.travel.data()));
     pp.stamp = sc.stamp;
   }
   // Sphere centres in F at both ends (F's inverse computed once per sub-motion), then the
@@ -309,11 +322,12 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   if (sc.pool.size() != sc.refs.size() * nl) sc.pool.clear(), sc.refs.clear();  // another model
   sc.free_slots.clear();
   for (std::size_t k = 0; k < sc.refs.size(); ++k) sc.refs[k] = 0, sc.free_slots.push_back(int(k));
-  if (sc.pad.size() < m.slots().size()) sc.pad.resize(m.slots().size());
+  if (sc.pad.size() < m.slots().size())
+    sc.pad.resize(m.slots().size()), sc.pad_stamp.resize(m.slots().size(), 0);
   if (sc.sweeps.size() < m.elements().size()) sc.sweeps.resize(m.elements().size());
   if (sc.pair_pads.size() < pairs_.size()) sc.pair_pads.resize(pairs_.size());
   if (sc.frame_inverse.size() < nl) sc.frame_inverse.resize(nl);
-  if (sc.qa.size() < n) sc.qa.resize(n), sc.qb.resize(n);
+  if (sc.qa.size() < n) sc.qa.resize(n), sc.qb.resize(n), sc.travel.resize(n);
   if (sc.free_along.size() < m.selfTables().size()) sc.free_along.resize(m.selfTables().size());
   sc.work.resize(units_.size());
   for (std::size_t u = 0; u < units_.size(); ++u) sc.work[u] = static_cast<int>(u);
@@ -341,8 +355,8 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     }
     const Eigen::Isometry3d* XA = sc.pool.data() + std::size_t(iv.pa) * nl;
     const Eigen::Isometry3d* XB = sc.pool.data() + std::size_t(iv.pb) * nl;
-    paddings(qa, qb, sc.pad.data());
-    ++sc.stamp;  // every element's sweep is stale
+    jointTravel(qa, qb, n, balls_, sc.travel.data());
+    ++sc.stamp;  // every element's sweep and every slot's padding is stale
     bool tables_read = false;
     const bool may_defer = iv.tb - iv.ta > min_fraction_;
     for (std::size_t w = iv.begin; w < iv.end; ++w) {
@@ -355,8 +369,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         }
         if (sc.free_along[std::size_t(unit.table)]) continue;  // certified over [ta, tb]
       }
-      if (unitClear(unit, XA, XB, sc.pad.data(), may_defer, &tests))
-        continue;  // cleared for [ta, tb]
+      if (unitClear(unit, XA, XB, may_defer, &tests)) continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the
       // halves' list (near a contact it fails again at once), followed by the units not yet
       // tested here. Testing those here too would clear some for both halves with one test,

@@ -99,7 +99,10 @@ double quaternionAngle(const double* a, const double* b) {
   return 4.0 * std::asin(half_chord) * (1.0 + 1e-12) + 1e-14;
 }
 
-MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1) {
+namespace {
+// The bounds of motion_bounds.h from each term's travel dq (>= 0; NaN for a NaN state).
+template <class Travel>
+MotionBound accumulate(const std::vector<ChainTerm>& chain, Travel travel) {
   MotionBound b;
   // From the root down (the chain is nearest first): `above` is the revolute angle of the
   // joints above the current one, W_<j in motion_bounds.h.
@@ -107,16 +110,8 @@ MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, c
   for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
     const ChainTerm& t = *it;
     if (t.active < 0) continue;
-    double dq;
-    if (t.ball) {
-      const double* a = q0 + t.active;
-      const double* c = q1 + t.active;
-      // The same quaternion at both ends does not turn (a multi-DOF joint the motion holds).
-      if (a[0] == c[0] && a[1] == c[1] && a[2] == c[2] && a[3] == c[3]) continue;
-      dq = quaternionAngle(q0 + t.active, q1 + t.active);
-    } else {
-      dq = std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
-    }
+    const double dq = travel(t);
+    if (dq == 0.0) continue;  // a joint the motion holds adds nothing (even an unbounded reach)
     if (t.prismatic) {
       b.length += dq;
       b.bend += 2.0 * dq * above;
@@ -128,6 +123,36 @@ MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, c
     }
   }
   return b;
+}
+}  // namespace
+
+MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1) {
+  return accumulate(chain, [&](const ChainTerm& t) {
+    if (!t.ball) return std::abs(t.multiplier * (q1[t.active] - q0[t.active]));
+    const double* a = q0 + t.active;
+    const double* c = q1 + t.active;
+    // The same quaternion at both ends does not turn (a multi-DOF joint the motion holds).
+    if (a[0] == c[0] && a[1] == c[1] && a[2] == c[2] && a[3] == c[3]) return 0.0;
+    return quaternionAngle(a, c);
+  });
+}
+
+void jointTravel(const double* q0, const double* q1, std::size_t n, const std::vector<int>& balls,
+                 double* travel) {
+  for (std::size_t i = 0; i < n; ++i) travel[i] = std::abs(q1[i] - q0[i]);
+  for (int a : balls) {
+    const double* x = q0 + a;
+    const double* y = q1 + a;
+    travel[a] =
+        x[0] == y[0] && x[1] == y[1] && x[2] == y[2] && x[3] == y[3] ? 0.0 : quaternionAngle(x, y);
+  }
+}
+
+MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* travel) {
+  // |m (q1 - q0)| = |m| |q1 - q0| exactly: the same bounds as from the two states.
+  return accumulate(chain, [&](const ChainTerm& t) {
+    return t.ball ? travel[t.active] : std::abs(t.multiplier) * travel[t.active];
+  });
 }
 
 }  // namespace dss

@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "dss/checker/checker_setup.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/robot/kinematics.h"
 #include "dss/robot/urdf_loader.h"
@@ -167,6 +168,12 @@ Totals checkBounds(const dss::RobotModel& robot, const std::vector<int>& group,
         if (!term.prismatic && term.active >= 0)
           turn += std::abs(term.multiplier * (q1[term.active] - q0[term.active]));
       BOOST_TEST(std::abs(b.turn - turn) <= 1e-12 * (1.0 + turn));
+      // From the joints' travel, as the continuous check reads it once per sub-motion: the
+      // same bounds, bit for bit.
+      std::vector<double> travel(q0.size());
+      dss::jointTravel(q0.data(), q1.data(), q0.size(), {}, travel.data());
+      const dss::MotionBound bt = dss::motionBound(c.terms, travel.data());
+      BOOST_TEST((bt.length == b.length && bt.turn == b.turn && bt.bend == b.bend));
       const double length_tol = 1e-12 * (1.0 + b.length), turn_tol = 1e-9;
       auto inStop = [&](int s) {
         return c.stop < 0 ? X[s][c.link] : Eigen::Isometry3d(X[s][c.stop].inverse() * X[s][c.link]);
@@ -297,6 +304,52 @@ BOOST_AUTO_TEST_CASE(prismatic_and_mimic_joints_held_outside_their_limits) {
   held[slide] = -0.9;
   held[finger] = -0.6;  // the mirror at 1.25
   checkBounds(robot, {turn}, held, 7, 60, 512);
+}
+
+// A floating joint (slides and a ball): the bounds from jointTravel equal those from the two
+// states, for random quaternions of any scale, a quaternion and its negation (no turn), and
+// the same quaternion at both ends.
+BOOST_AUTO_TEST_CASE(travel_bounds_equal_state_bounds_with_a_ball_joint) {
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_free_flyer/";
+  const dss::LoadedRobot r =
+      dss::loadRobot(dir + "dss_free_flyer.urdf", dir + "dss_free_flyer.srdf");
+  const dss::RobotModel& robot = *r.model;
+  std::vector<int> balls;
+  for (std::size_t a = 0; a < robot.numActiveJoints(); ++a) {
+    const dss::RobotJoint& j = robot.joints[robot.active_joints[a]];
+    if (j.type == dss::JointType::kBall && j.active_index == int(a)) balls.push_back(int(a));
+  }
+  BOOST_REQUIRE(balls.size() == 1u);
+  const std::vector<double> held(robot.numActiveJoints(), 0.0);
+  std::vector<std::vector<dss::ChainTerm>> chains;
+  for (std::size_t l = 0; l < robot.links.size(); ++l)
+    if (robot.links[l].hasGeometry())
+      chains.push_back(dss::chainAbove(robot, int(l), -1, 0.3, held));
+  BOOST_REQUIRE(!chains.empty());
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> n;
+  int compared = 0, turning = 0;
+  for (int k = 0; k < 2000; ++k) {
+    std::vector<double> q0(robot.numActiveJoints()), q1(q0.size());
+    for (auto& x : q0) x = n(rng);
+    for (auto& x : q1) x = n(rng);
+    const int b = balls[0];
+    if (k % 4 == 1)
+      for (int i = 0; i < 4; ++i) q1[b + i] = q0[b + i];
+    if (k % 4 == 2)
+      for (int i = 0; i < 4; ++i) q1[b + i] = -3.0 * q0[b + i];
+    std::vector<double> travel(q0.size());
+    dss::jointTravel(q0.data(), q1.data(), q0.size(), balls, travel.data());
+    for (const auto& c : chains) {
+      const dss::MotionBound x = dss::motionBound(c, q0.data(), q1.data());
+      const dss::MotionBound y = dss::motionBound(c, travel.data());
+      BOOST_TEST((x.length == y.length && x.turn == y.turn && x.bend == y.bend), "state " << k);
+      ++compared;
+      turning += x.turn > 1e-6;
+    }
+  }
+  BOOST_TEST(compared >= 2000);
+  BOOST_TEST(turning > 500);
 }
 
 BOOST_AUTO_TEST_CASE(prismatic_travel_covers_limits_and_held_values) {

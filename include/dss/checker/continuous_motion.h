@@ -90,7 +90,7 @@ class ContinuousMotionChecker {
   };
   /// `may_defer`: the sub-motion can still be halved (see kDeferRatio in the source).
   bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB,
-                 const double* pad, bool may_defer, std::uint64_t* tests) const;
+                 bool may_defer, std::uint64_t* tests) const;
 
   std::shared_ptr<const DssChecker> checker_;
   double min_fraction_;

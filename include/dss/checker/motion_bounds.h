@@ -90,4 +90,12 @@ struct MotionBound {
 };
 MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, const double* q1);
 
+/// What motionBound reads of a motion, once for many chains: |q1 - q0| per active value (n of
+/// them), and at the first value of each ball joint in `balls` its turn angle (0 when the
+/// quaternion is the same at both ends).
+void jointTravel(const double* q0, const double* q1, std::size_t n, const std::vector<int>& balls,
+                 double* travel);
+/// motionBound from jointTravel's values: the same bounds, bit for bit.
+MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* travel);
+
 }  // namespace dss
