@@ -76,6 +76,7 @@ struct Scratch {
   // computed when a unit first needs it (pad_stamp == stamp).
   std::vector<double> travel, pad, qa, qb;
   std::vector<std::uint64_t> pad_stamp;
+  std::vector<int> turning;  // the ball joints whose quaternion differs at the motion's ends
   std::vector<unsigned char> free_along;  // per self-pair table, for the current sub-motion
   std::vector<int> work;                  // unit indices, a stack of lists (see clear())
   std::vector<Interval> stack;
@@ -208,8 +209,8 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     ElementSweep& s = sc.sweeps[std::size_t(e)];
     if (!s.has_poses) {
       const CollisionModel::Element& x = el[std::size_t(e)];
-      s.XS0 = XA[x.link] * x.source->X_LS;
-      s.XS1 = XB[x.link] * x.source->X_LS;
+      s.XS0 = x.identity_LS ? XA[x.link] : XA[x.link] * x.source->X_LS;
+      s.XS1 = x.identity_LS ? XB[x.link] : XB[x.link] * x.source->X_LS;
       s.has_poses = true;
     }
     return s;
@@ -332,6 +333,13 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   sc.work.resize(units_.size());
   for (std::size_t u = 0; u < units_.size(); ++u) sc.work[u] = static_cast<int>(u);
   sc.stack.clear();
+  // A ball joint the motion holds (the same quaternion at both ends) is interpolated linearly
+  // like the other values, which keeps it exactly; only the others are slerped.
+  sc.turning.clear();
+  for (int a : balls_)
+    if (!(q0[a] == q1[a] && q0[a + 1] == q1[a + 1] && q0[a + 2] == q1[a + 2] &&
+          q0[a + 3] == q1[a + 3]))
+      sc.turning.push_back(a);
   const int p0 = sc.acquire(nl), p1 = sc.acquire(nl);
   m.kinematics().computeLinkPoses(q0, sc.pool.data() + std::size_t(p0) * nl);
   m.kinematics().computeLinkPoses(q1, sc.pool.data() + std::size_t(p1) * nl);
@@ -349,13 +357,13 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       qa[i] = q0[i] + iv.ta * (q1[i] - q0[i]);
       qb[i] = q0[i] + iv.tb * (q1[i] - q0[i]);
     }
-    for (int a : balls_) {  // quaternions: slerp along the shorter arc, as OMPL's SO(3)
+    for (int a : sc.turning) {  // quaternions: slerp along the shorter arc, as OMPL's SO(3)
       slerpQuaternion(q0 + a, q1 + a, iv.ta, qa + a);
       slerpQuaternion(q0 + a, q1 + a, iv.tb, qb + a);
     }
     const Eigen::Isometry3d* XA = sc.pool.data() + std::size_t(iv.pa) * nl;
     const Eigen::Isometry3d* XB = sc.pool.data() + std::size_t(iv.pb) * nl;
-    jointTravel(qa, qb, n, balls_, sc.travel.data());
+    jointTravel(qa, qb, n, sc.turning, sc.travel.data());
     ++sc.stamp;  // every element's sweep and every slot's padding is stale
     bool tables_read = false;
     const bool may_defer = iv.tb - iv.ta > min_fraction_;
@@ -392,7 +400,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
-    for (int a : balls_) slerpQuaternion(q0 + a, q1 + a, tm, qa + a);
+    for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tm, qa + a);
     const int pm = sc.acquire(nl);  // may move the pool: XA and XB are not used below
     Eigen::Isometry3d* XM = sc.pool.data() + std::size_t(pm) * nl;
     m.kinematics().computeLinkPoses(qa, XM);
