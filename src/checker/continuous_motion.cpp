@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -39,10 +40,11 @@ struct ElementSweep {
   bool has_poses = false;
   int grid = -1;
 };
-// A self pair's paddings in its frame over the current sub-motion.
-struct PairPads {
+// A slot's padding in an ancestor's frame (ContinuousMotionChecker::rel_chains_) over the
+// current sub-motion.
+struct RelativePad {
   std::uint64_t stamp = 0;
-  double a = 0.0, b = 0.0;
+  double pad = 0.0;
 };
 // The inverse pose of a pair frame's link at both ends of the current sub-motion.
 struct FrameInverse {
@@ -52,7 +54,7 @@ struct FrameInverse {
 struct Scratch {
   std::vector<ElementSweep> sweeps;         // per model element
   std::vector<FrameInverse> frame_inverse;  // per robot link
-  std::vector<PairPads> pair_pads;          // per self pair
+  std::vector<RelativePad> rel_pads;        // per relative chain
   std::uint64_t stamp = 0;
   // Link poses of sub-motion ends, one slot of num-links poses each, shared by the intervals
   // that end there and released when none does.
@@ -148,6 +150,7 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
   const RobotModel& robot = m.robot();
   std::vector<char> computed(robot.links.size(), 0);
   for (int l : m.kinematics().updatedLinks()) computed[std::size_t(l)] = 1;
+  std::map<std::pair<int, int>, int> rel_index;  // (slot, ancestor) -> rel_chains_
   for (const auto& p : m.selfPairs()) {
     const auto& sa = m.slots()[p.a];
     const auto& sb = m.slots()[p.b];
@@ -156,8 +159,21 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
     const int lca = lowestCommonAncestor(robot, sa.link, sb.link);
     PairFrame f;
     f.frame = lca >= 0 && computed[std::size_t(lca)] ? lca : -1;
-    f.chain_a = chainAbove(robot, sa.link, lca, sa.center_L.norm() + sa.radius, m.held());
-    f.chain_b = chainAbove(robot, sb.link, lca, sb.center_L.norm() + sb.radius, m.held());
+    auto chainIndex = [&](int slot) {
+      const auto key = std::make_pair(slot, lca);
+      auto it = rel_index.find(key);
+      if (it == rel_index.end()) {
+        const auto& s = m.slots()[std::size_t(slot)];
+        it = rel_index.emplace(key, int(rel_chains_.size())).first;
+        rel_chains_.push_back(
+            chainAbove(robot, s.link, lca, s.center_L.norm() + s.radius, m.held()));
+      }
+      return it->second;
+    };
+    f.chain_a = chainIndex(p.a);
+    f.chain_b = chainIndex(p.b);
+    f.still_a = rel_chains_[std::size_t(f.chain_a)].empty();
+    f.still_b = rel_chains_[std::size_t(f.chain_b)].empty();
     const int pair_index = int(pairs_.size());
     pairs_.push_back(std::move(f));
     for (int ea = sa.first_element; ea < sa.first_element + sa.num_elements; ++ea)
@@ -241,12 +257,14 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   const auto& eb = el[u.b];
   // In the pair's frame F: poses relative to F at both ends, paddings from the joints below F.
   const PairFrame& f = pairs_[std::size_t(u.pair)];
-  PairPads& pp = sc.pair_pads[std::size_t(u.pair)];
-  if (pp.stamp != sc.stamp) {
-    pp.a = chordPadding(motionBound(f.chain_a, sc.travel.data()));
-    pp.b = chordPadding(motionBound(f.chain_b, sc.travel.data()));
-    pp.stamp = sc.stamp;
-  }
+  auto relativePad = [&](int chain) {
+    RelativePad& rp = sc.rel_pads[std::size_t(chain)];
+    if (rp.stamp != sc.stamp) {
+      rp.pad = chordPadding(motionBound(rel_chains_[std::size_t(chain)], sc.travel.data()));
+      rp.stamp = sc.stamp;
+    }
+    return rp.pad;
+  };
   // Sphere centres in F at both ends (F's inverse computed once per sub-motion), then the
   // shape poses in F for the stages after the spheres.
   const ElementSweep& sb = swept(u.b);
@@ -261,7 +279,7 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     }
     F0 = &fi.X0, F1 = &fi.X1;
   }
-  const double p = pp.a + pp.b + set.self_padding;
+  const double p = relativePad(f.chain_a) + relativePad(f.chain_b) + set.self_padding;
   const Eigen::Vector3d a0 = F0 ? *F0 * sa.c0 : sa.c0, a1 = F1 ? *F1 * sa.c1 : sa.c1;
   const Eigen::Vector3d b0 = F0 ? *F0 * sb.c0 : sb.c0, b1 = F1 ? *F1 * sb.c1 : sb.c1;
   const double r = 0.5 * (a1 - a0).norm() + 0.5 * (b1 - b0).norm() + ea.radius + eb.radius + p;
@@ -282,10 +300,10 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   ++*tests;
   // A link that is the frame itself (the common ancestor) does not move there: only the other
   // one is swept, at half the support cost.
-  if (f.chain_a.empty())
+  if (f.still_a)
     return !intersectSwept(eb.source->shape, YB0, YB1, p, ea.source->shape, YA0, set.options)
                 .intersect;
-  if (f.chain_b.empty())
+  if (f.still_b)
     return !intersectSwept(ea.source->shape, YA0, YA1, p, eb.source->shape, YB0, set.options)
                 .intersect;
   return !intersectSwept(ea.source->shape, YA0, YA1, p, eb.source->shape, YB0, YB1, set.options)
@@ -326,7 +344,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   if (sc.pad.size() < m.slots().size())
     sc.pad.resize(m.slots().size()), sc.pad_stamp.resize(m.slots().size(), 0);
   if (sc.sweeps.size() < m.elements().size()) sc.sweeps.resize(m.elements().size());
-  if (sc.pair_pads.size() < pairs_.size()) sc.pair_pads.resize(pairs_.size());
+  if (sc.rel_pads.size() < rel_chains_.size()) sc.rel_pads.resize(rel_chains_.size());
   if (sc.frame_inverse.size() < nl) sc.frame_inverse.resize(nl);
   if (sc.qa.size() < n) sc.qa.resize(n), sc.qb.resize(n), sc.travel.resize(n);
   if (sc.free_along.size() < m.selfTables().size()) sc.free_along.resize(m.selfTables().size());

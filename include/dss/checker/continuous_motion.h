@@ -83,10 +83,12 @@ class ContinuousMotionChecker {
   };
   // A self pair of slots, seen from the lowest link above both whose pose the kinematics
   // compute (`frame`; -1: the world, when that link never moves): only the joints between it
-  // and each slot move the slot there.
+  // and each slot move the slot there (`chain_a`, `chain_b`: indices into rel_chains_, shared
+  // by the pairs of a slot with the same common ancestor).
   struct PairFrame {
     int frame = -1;
-    std::vector<ChainTerm> chain_a, chain_b;
+    int chain_a = -1, chain_b = -1;
+    bool still_a = false, still_b = false;  ///< no joint moves the slot in the frame
   };
   /// `may_defer`: the sub-motion can still be halved (see kDeferRatio in the source).
   bool unitClear(const Unit& u, const Eigen::Isometry3d* XA, const Eigen::Isometry3d* XB,
@@ -94,10 +96,11 @@ class ContinuousMotionChecker {
 
   std::shared_ptr<const DssChecker> checker_;
   double min_fraction_;
-  std::vector<std::vector<ChainTerm>> chains_;  ///< per slot: the joints that move it
-  std::vector<Unit> units_;                     ///< every unit of the model, in sweep order
-  std::vector<PairFrame> pairs_;                ///< per self pair of the model
-  std::vector<int> balls_;                      ///< the first state value of each ball joint
+  std::vector<std::vector<ChainTerm>> chains_;      ///< per slot: the joints that move it
+  std::vector<Unit> units_;                         ///< every unit of the model, in sweep order
+  std::vector<PairFrame> pairs_;                    ///< per self pair of the model
+  std::vector<std::vector<ChainTerm>> rel_chains_;  ///< a slot's joints below an ancestor
+  std::vector<int> balls_;                          ///< the first state value of each ball joint
   mutable std::atomic<std::uint64_t> sub_motions_{0}, unit_tests_{0};
 };
 
