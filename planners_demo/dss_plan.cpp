@@ -404,6 +404,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["path_length"] = length;
   j["path_states"] = path_states;
   j["validity_checks"] = counters.checks;
+  j["colliding_states"] = counters.collisions;
+  j["pair_tests"] = counters.pair_tests;
   j["motion_checks"] = dss::motionChecks(*mv);
   j["checker"] = checker->checker().name();
   j["simd"] = dss::simdPathName(dss::activeSimdPath());
