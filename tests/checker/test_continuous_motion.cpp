@@ -242,6 +242,15 @@ BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling_on_the_panda, DSS_NEE
   checkAgainstDenseSampling(p, 9, 0.15, 150);
 }
 
+// The UR5's joints turn through 4 pi: its motions are the longest of the shared robots.
+BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling_on_the_ur5, DSS_NEEDS_SHARED) {
+  const std::string ur5 = dss_test::sharedPath("robots/ur5_robotiq85");
+  const std::string scene = dss_test::sharedPath("scenes/mbm_ur5/table_pick/scene0001.yaml");
+  const Arm a = loadArm(ur5 + "/ur5.urdf", ur5 + "/ur5.srdf", scene);
+  checkAgainstDenseSampling(a, 14, 0.1, 400);
+  checkAgainstDenseSampling(a, 15, 1.0, 100);
+}
+
 // The smallest sub-motion must be a fraction in (0, 1]: zero, negative, NaN and more than the
 // whole motion are refused at construction; the ends of the range are accepted.
 BOOST_AUTO_TEST_CASE(min_fraction_outside_zero_one_is_refused) {
