@@ -311,6 +311,9 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
 }
 
 bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* last) const {
+  // Without a last valid fraction to report, a colliding end state decides the motion at once
+  // (as OMPL's discrete validator, which checks it first): its poses are computed anyway.
+  const bool end_first = last == nullptr;
   double last_storage = 0.0;
   if (!last) last = &last_storage;
   *last = 0.0;
@@ -361,6 +364,8 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   const int p0 = sc.acquire(nl), p1 = sc.acquire(nl);
   m.kinematics().computeLinkPoses(q0, sc.pool.data() + std::size_t(p0) * nl);
   m.kinematics().computeLinkPoses(q1, sc.pool.data() + std::size_t(p1) * nl);
+  if (end_first && checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl))
+    return false;
   sc.stack.push_back({0.0, 1.0, 0, units_.size(), p0, p1});
   double* qa = sc.qa.data();
   double* qb = sc.qb.data();

@@ -15,18 +15,25 @@ ContinuousMotionValidator::ContinuousMotionValidator(
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State* s1,
                                             const ompl::base::State* s2) const {
-  std::pair<ompl::base::State*, double> lv{nullptr, 0.0};
-  return checkMotion(s1, s2, lv);
+  return check(s1, s2, nullptr);
 }
 
 bool ContinuousMotionValidator::checkMotion(
     const ompl::base::State* s1, const ompl::base::State* s2,
     std::pair<ompl::base::State*, double>& lastValid) const {
+  double last = 0.0;
+  if (check(s1, s2, &last)) return true;
+  if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, last, lastValid.first);
+  lastValid.second = last;
+  return false;
+}
+
+bool ContinuousMotionValidator::check(const ompl::base::State* s1, const ompl::base::State* s2,
+                                      double* last) const {
   const RobotModel& robot = motion_->checker().model().robot();
   const std::size_t n = robot.numActiveJoints();
   thread_local std::vector<double> q0, q1;
   if (q0.size() < n) q0.resize(n), q1.resize(n);
-  double last = 0.0;
   bool ok = map_->toJoints(s1, q0.data()) && map_->toJoints(s2, q1.data());
   if (ok) {
     // Continuous joints: move the short way, as OMPL's SO2 interpolation does.
@@ -36,16 +43,12 @@ bool ContinuousMotionValidator::checkMotion(
       if (j.type == JointType::kContinuous || !j.limits.has_position_limits)
         q1[a] = q0[a] + std::remainder(q1[a] - q0[a], 2.0 * M_PI);
     }
-    ok = motion_->clear(q0.data(), q1.data(), &last);
+    ok = motion_->clear(q0.data(), q1.data(), last);
+  } else if (last) {
+    *last = 0.0;
   }
-  if (ok) {
-    valid_motions_.fetch_add(1, std::memory_order_relaxed);
-    return true;
-  }
-  invalid_motions_.fetch_add(1, std::memory_order_relaxed);
-  if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, last, lastValid.first);
-  lastValid.second = last;
-  return false;
+  (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
+  return ok;
 }
 
 std::uint64_t motionChecks(const ompl::base::MotionValidator& validator) {

@@ -151,7 +151,7 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
   const dss::ContinuousMotionChecker cmc(a.checker);
   const dss::CollisionModel& m = *a.model;
   std::mt19937_64 rng(seed);
-  int accepted = 0, colliding = 0, conservative = 0, made = 0;
+  int accepted = 0, colliding = 0, conservative = 0, made = 0, ends_colliding = 0;
   while (made < motions) {
     const auto g0 = randomGroupState(a, rng), g1r = randomGroupState(a, rng);
     std::vector<double> g1(g0.size());
@@ -161,6 +161,10 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
     ++made;
     double last = -1.0;
     const bool ok = cmc.clear(q0.data(), q1.data(), &last);
+    // Without a last valid fraction the end state is checked first: the same answer.
+    const bool end_first = cmc.clear(q0.data(), q1.data());
+    BOOST_TEST(end_first == ok, "motion " << made);
+    ends_colliding += a.checker->collides(q1.data());
     int first_bad = -1;
     std::vector<double> qt(q0.size());
     const int kSamples = 2000;
@@ -188,6 +192,7 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
   }
   BOOST_TEST(accepted > 0);
   BOOST_TEST(colliding > 0);
+  BOOST_TEST(ends_colliding > 0);
   BOOST_TEST_MESSAGE("dense sampling, scale "
                      << scale << ": " << motions << " motions, " << accepted << " accepted, "
                      << colliding << " colliding rejected, " << conservative
