@@ -311,9 +311,10 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
 }
 
 bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* last) const {
-  // Without a last valid fraction to report, a colliding end state decides the motion at once
-  // (as OMPL's discrete validator, which checks it first): its poses are computed anyway.
-  const bool end_first = last == nullptr;
+  // Without a last valid fraction to report, a colliding end state decides the motion at once:
+  // it is checked (with the poses computed for it) when the whole motion is not cleared, before
+  // the first midpoint.
+  bool check_end = last == nullptr;
   double last_storage = 0.0;
   if (!last) last = &last_storage;
   *last = 0.0;
@@ -364,8 +365,6 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   const int p0 = sc.acquire(nl), p1 = sc.acquire(nl);
   m.kinematics().computeLinkPoses(q0, sc.pool.data() + std::size_t(p0) * nl);
   m.kinematics().computeLinkPoses(q1, sc.pool.data() + std::size_t(p1) * nl);
-  if (end_first && checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl))
-    return false;
   sc.stack.push_back({0.0, 1.0, 0, units_.size(), p0, p1});
   double* qa = sc.qa.data();
   double* qb = sc.qb.data();
@@ -420,6 +419,10 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     if (iv.tb - iv.ta <= min_fraction_) {
       *last = iv.ta;
       return false;
+    }
+    if (check_end) {
+      check_end = false;
+      if (checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl)) return false;
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
