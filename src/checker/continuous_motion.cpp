@@ -359,9 +359,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
   // like the other values, which keeps it exactly; only the others are slerped.
   sc.turning.clear();
   for (int a : balls_)
-    if (!(q0[a] == q1[a] && q0[a + 1] == q1[a + 1] && q0[a + 2] == q1[a + 2] &&
-          q0[a + 3] == q1[a + 3]))
-      sc.turning.push_back(a);
+    if (!sameQuaternion(q0 + a, q1 + a)) sc.turning.push_back(a);
   const int p0 = sc.acquire(nl), p1 = sc.acquire(nl);
   m.kinematics().computeLinkPoses(q0, sc.pool.data() + std::size_t(p0) * nl);
   m.kinematics().computeLinkPoses(q1, sc.pool.data() + std::size_t(p1) * nl);

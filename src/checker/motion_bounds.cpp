@@ -132,20 +132,15 @@ MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* q0, c
     const double* a = q0 + t.active;
     const double* c = q1 + t.active;
     // The same quaternion at both ends does not turn (a multi-DOF joint the motion holds).
-    if (a[0] == c[0] && a[1] == c[1] && a[2] == c[2] && a[3] == c[3]) return 0.0;
-    return quaternionAngle(a, c);
+    return sameQuaternion(a, c) ? 0.0 : quaternionAngle(a, c);
   });
 }
 
 void jointTravel(const double* q0, const double* q1, std::size_t n, const std::vector<int>& balls,
                  double* travel) {
   for (std::size_t i = 0; i < n; ++i) travel[i] = std::abs(q1[i] - q0[i]);
-  for (int a : balls) {
-    const double* x = q0 + a;
-    const double* y = q1 + a;
-    travel[a] =
-        x[0] == y[0] && x[1] == y[1] && x[2] == y[2] && x[3] == y[3] ? 0.0 : quaternionAngle(x, y);
-  }
+  for (int a : balls)
+    travel[a] = sameQuaternion(q0 + a, q1 + a) ? 0.0 : quaternionAngle(q0 + a, q1 + a);
 }
 
 MotionBound motionBound(const std::vector<ChainTerm>& chain, const double* travel) {

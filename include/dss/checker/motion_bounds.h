@@ -59,6 +59,11 @@ int lowestCommonAncestor(const RobotModel& robot, int a, int b);
 /// the angle a slerp along the shorter arc turns by. Infinity when one has no direction.
 double quaternionAngle(const double* a, const double* b);
 
+/// The same four quaternion values (x, y, z, w) at a and b: a ball joint the motion holds.
+inline bool sameQuaternion(const double* a, const double* b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && a[3] == b[3];
+}
+
 /// The unit quaternion at fraction t of the slerp from a to b (x, y, z, w; normalised first)
 /// along the shorter arc, as OMPL's SO(3) interpolation moves a rotation.
 void slerpQuaternion(const double* a, const double* b, double t, double* out);
