@@ -3,7 +3,7 @@
 // through its window; the solution path's CSV names the multi-DOF variables and reads back.
 #include <boost/test/unit_test.hpp>
 #include <fstream>
-#include <regex>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "support/run_tool.h"
@@ -23,13 +23,6 @@ std::vector<std::string> problem(const std::string& robot, const std::string& sc
           "--time",    "30"};
 }
 
-// The integer value of "key" in a JSON line, -1 when absent.
-long jsonCount(const std::string& out, const std::string& key) {
-  std::smatch m;
-  if (!std::regex_search(out, m, std::regex("\"" + key + "\":([0-9]+)"))) return -1;
-  return std::stol(m[1].str());
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(mobile_base_plans)
@@ -44,8 +37,9 @@ BOOST_AUTO_TEST_CASE(the_mobile_base_plans_through_its_aisle) {
     BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
     // The states the planner asked about, and of them those found colliding: some of the base
     // poses an RRT tries in the aisle run into its shelves.
-    const long checks = jsonCount(r.out, "validity_checks");
-    const long colliding = jsonCount(r.out, "colliding_states");
+    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+    const long checks = j.at("validity_checks").get<long>();
+    const long colliding = j.at("colliding_states").get<long>();
     BOOST_TEST(checks > 0, r.out);
     BOOST_TEST(colliding > 0, r.out);
     BOOST_TEST(colliding < checks, r.out);
