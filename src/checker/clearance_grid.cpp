@@ -7,10 +7,25 @@
 
 namespace dss {
 
+namespace {
+// A lower bound on the distance from p to obstacle k: the distance to its world box, or to its
+// oriented box less that one's rounding when larger.
+double distanceBound(const Eigen::Vector3d& p, const std::vector<Aabb>& boxes,
+                     const std::vector<Obb>& obbs, std::size_t k) {
+  const double d = std::sqrt(detail::sqDistPointAabb(p, boxes[k]));
+  if (obbs.empty() || obbs[k].axis_aligned) return d;
+  double error;
+  const double o = std::sqrt(sqDistPointObb(p, obbs[k], &error)) - error;
+  return o > d ? o : d;  // NaN: d
+}
+}  // namespace
+
 ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
-                             std::size_t max_voxels, double min_voxel) {
+                             const std::vector<Obb>& obbs, std::size_t max_voxels,
+                             double min_voxel) {
   const Eigen::Vector3d extent = region.upper - region.lower;
-  if (boxes.empty() || !extent.allFinite() || !(extent.minCoeff() >= 0.0) || max_voxels == 0)
+  if (boxes.empty() || !extent.allFinite() || !(extent.minCoeff() >= 0.0) || max_voxels == 0 ||
+      !(obbs.empty() || obbs.size() == boxes.size()))
     return;
   double size = std::max(min_voxel, std::cbrt(extent.prod() / static_cast<double>(max_voxels)));
   int n[3];
@@ -40,20 +55,23 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
     for (int y = 0; y < n[1]; ++y)
       for (int x = 0; x < n[0]; ++x, ++i) {
         const Eigen::Vector3d c = origin_ + size * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-        double d2 = std::numeric_limits<double>::infinity();
-        for (const Aabb& b : boxes) d2 = std::min(d2, detail::sqDistPointAabb(c, b));
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < boxes.size(); ++k)
+          d = std::min(d, distanceBound(c, boxes, obbs, k));
         const double margin = 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal);
-        const double lower = std::sqrt(d2) - half_diagonal - margin;
+        const double lower = d - half_diagonal - margin;
         if (!(lower > 0.0)) continue;  // also NaN
         bound_[i] = static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
       }
 }
 
 void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radius,
-                                    std::size_t max_bytes) {
+                                    std::size_t max_bytes, const std::vector<Obb>& obbs) {
   words_ = 0;
   candidates_.clear();
-  if (bound_.empty() || boxes.empty() || !(radius >= 0.0) || !std::isfinite(radius)) return;
+  if (bound_.empty() || boxes.empty() || !(radius >= 0.0) || !std::isfinite(radius) ||
+      !(obbs.empty() || obbs.size() == boxes.size()))
+    return;
   for (const Aabb& b : boxes)
     if (!b.lower.allFinite() || !b.upper.allFinite()) return;
   const std::size_t words = (boxes.size() + 63) / 64;
@@ -79,8 +97,7 @@ void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radiu
         for (int x = lo[0]; x < hi[0]; ++x) {
           const Eigen::Vector3d c = origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
           const double margin = 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + reach);
-          const double r = reach + margin;
-          if (!(detail::sqDistPointAabb(c, b) <= r * r)) continue;
+          if (!(distanceBound(c, boxes, obbs, k) <= reach + margin)) continue;
           candidates_[(z * stride_z_ + y * stride_y_ + x) * words + k / 64] |= bit;
         }
   }

@@ -366,7 +366,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       region.lower = region.lower.cwiseMin(slot.reach_center_W - r);
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
     }
-  grid_ = ClearanceGrid(region, boxes_);
+  grid_ = ClearanceGrid(region, boxes_, obbs_);
   // Candidate lists pay where many obstacles are kept (a mobile base among shelves): a link
   // sphere the grid cannot clear is then tested against the few obstacles near it only.
   constexpr std::size_t kMinCandidateObstacles = 16;
@@ -376,7 +376,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
     for (const Slot& slot : slots_)
       if (!slot.obstacles.empty()) radius = std::max(radius, slot.radius);
     // Room for a small scene padding on top of the largest link sphere.
-    grid_.buildCandidates(boxes_, radius + 0.01, kMaxCandidateBytes);
+    grid_.buildCandidates(boxes_, radius + 0.01, kMaxCandidateBytes, obbs_);
   }
   if (const std::size_t words = grid_.candidateWords())
     for (Slot& slot : slots_) {

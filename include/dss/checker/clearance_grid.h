@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "dss/checker/obb.h"
 #include "dss/scene/obstacle.h"
 
 namespace dss {
@@ -33,6 +34,12 @@ class ClearanceGrid {
   /// Covers `region` with at most about `max_voxels` cubic voxels (never smaller than
   /// `min_voxel` m). An empty or non-finite region, or no boxes, gives an empty grid.
   ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
+                std::size_t max_voxels = std::size_t(1) << 16, double min_voxel = 0.02)
+      : ClearanceGrid(region, boxes, {}, max_voxels, min_voxel) {}
+  /// The same with each obstacle also bounded by an oriented box (`obbs`, one per box, or
+  /// empty): a voxel's bound is then the larger of the two distances, which is much tighter
+  /// near an obstacle turned away from the axes.
+  ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes, const std::vector<Obb>& obbs,
                 std::size_t max_voxels = std::size_t(1) << 16, double min_voxel = 0.02);
 
   /// True when every box is farther than r from c (proven; false when unknown).
@@ -49,7 +56,9 @@ class ClearanceGrid {
   /// Candidate lists: for every voxel, the boxes that a ball of radius up to `radius` centred
   /// anywhere in the voxel can touch, one bit per box (index into `boxes`). Built only when
   /// they fit in `max_bytes`; without them candidates() is null.
-  void buildCandidates(const std::vector<Aabb>& boxes, double radius, std::size_t max_bytes);
+  /// `obbs`: as for the constructor (a box is then listed only where both its boxes are near).
+  void buildCandidates(const std::vector<Aabb>& boxes, double radius, std::size_t max_bytes,
+                       const std::vector<Obb>& obbs = {});
   /// The candidate bits of c's voxel (candidateWords() words), or null when c is outside the
   /// grid (or NaN), when no lists were built, or when r exceeds the radius they were built for.
   const std::uint64_t* candidates(const Eigen::Vector3d& c, double r) const {

@@ -55,6 +55,25 @@ inline bool obbApart(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,
                              [&](int j) { return Eigen::Vector3d(Ra.transpose() * Rb.col(j)); });
 }
 
+/// The squared distance from p to the box b (0 inside), and in `error` a bound on its rounding
+/// as a distance (a relative margin on the coordinates in b's frame).
+inline double sqDistPointObb(const Eigen::Vector3d& p, const Obb& b, double* error) {
+  const Eigen::Vector3d t = b.R.transpose() * (p - b.c);
+  const Eigen::Vector3d at = t.cwiseAbs();
+  *error = 1e-9 * (at.sum() + b.h.sum()) + 1e-12;
+  return (at - b.h).cwiseMax(0.0).squaredNorm();
+}
+
+/// True when the ball (c, r) is proved farther than r from the box b, beyond the rounding of
+/// the test; NaN anywhere gives false. Tighter than the ball against b's world AABB when b is
+/// turned (a wall or a shelf at an angle).
+inline bool ballApartObb(const Eigen::Vector3d& c, double r, const Obb& b) {
+  double error;
+  const double d2 = sqDistPointObb(c, b, &error);
+  const double reach = r + error;
+  return d2 > reach * reach;
+}
+
 /// obbApart for a box B whose rotation is exactly the identity (most obstacles: walls,
 /// shelves, tables): R = Ra^T needs no product.
 inline bool obbApartAxisAligned(const Eigen::Matrix3d& Ra, const Eigen::Vector3d& ca,

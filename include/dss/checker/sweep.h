@@ -163,6 +163,12 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       }
       return scene(e, X_WS, o);
     };
+    // Whether the sphere (cc, rr), which reaches obstacle o's world box, also reaches its
+    // oriented box: a turned obstacle (a wall at an angle) fills little of its world box.
+    auto reachesObb = [&](const Eigen::Vector3d& cc, double rr, int o) {
+      const Obb& ob = obbs[o];
+      return ob.axis_aligned || !ballApartObb(cc, rr, ob);
+    };
     // The obstacles whose boxes the sphere (cc, rr) reaches, each through `visit` (true: a
     // collision): the grid's candidates for the sphere's voxel (obstacles it can reach from
     // there), else every obstacle of the slot, two boxes at a time.
@@ -173,7 +179,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
           for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
             const int o =
                 static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
-            if (detail::sqDistPointAabb(cc, boxes[o]) > rr * rr) continue;
+            if (detail::sqDistPointAabb(cc, boxes[o]) > rr * rr || !reachesObb(cc, rr, o)) continue;
             if (visit(o)) return true;
           }
         return false;
@@ -181,8 +187,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       for (std::size_t begin = 0; begin < nb; begin += 64) {
         const std::size_t n = std::min<std::size_t>(64, nb - begin);
         for (std::uint64_t hits = s.boxes.hits(begin, n, cc, rr * rr); hits; hits &= hits - 1) {
-          const std::size_t i = begin + static_cast<std::size_t>(__builtin_ctzll(hits));
-          if (visit(s.obstacles[i])) return true;
+          const int o = s.obstacles[begin + static_cast<std::size_t>(__builtin_ctzll(hits))];
+          if (reachesObb(cc, rr, o) && visit(o)) return true;
         }
       }
       return false;
@@ -197,7 +203,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     const auto element = [&](int o) {
       for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
         const double re = elements[e].radius + scene_padding;
-        if (detail::sqDistPointAabb(X * elementCenter(elements[e]), boxes[o]) > re * re) continue;
+        const Eigen::Vector3d ce = X * elementCenter(elements[e]);
+        if (detail::sqDistPointAabb(ce, boxes[o]) > re * re || !reachesObb(ce, re, o)) continue;
         if (pair(e, o)) return true;
       }
       return false;
