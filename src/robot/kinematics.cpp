@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "dss/robot/multi_dof.h"
 
@@ -29,8 +30,12 @@ inline void storePair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
 // negates them. Without branches, two joints per SIMD pair, so that the joints of a state are
 // evaluated together: one joint's two polynomial chains are long and serial, and evaluated
 // inside the kinematics loop they took about half of its time. Calling libm's sincos costs
-// about as much as the rest of a kinematics step. Reads and writes n rounded up to even.
-inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n) {
+// about as much as the rest of a kinematics step. Reads and writes n rounded up to a whole
+// number of lanes (two; four in the AVX2 kinematics): every lane forms the same operations.
+template <class V, class VBits>
+__attribute__((always_inline)) inline void fastSinCosLanes(const double* x, double* s_out,
+                                                           double* c_out, int n) {
+  constexpr int kLanes = sizeof(V) / sizeof(double);
   constexpr double kPio2Hi = 0x1.921fb544p+0;        // M_PI_2 truncated to 33 significant bits
   constexpr double kPio2Mid = 0x1.0b46p-34;          // M_PI_2 - kPio2Hi, exact
   constexpr double kPio2Lo = 6.123233995736766e-17;  // pi/2 - M_PI_2
@@ -39,16 +44,17 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
   // std::nearbyint is an out-of-line call without SSE4.1. The low bits of kRound + t are
   // those of the integer t (two's complement), so they give the quadrant too.
   constexpr double kRound = 0x1.8p52;
-  const PairBits kSign = PairBits{1, 1} << 63;
-  for (int i = 0; i < n; i += 2) {
-    const Pair xi = loadPair(x + i);
-    const Pair shifted = xi * (2.0 / M_PI) + kRound;
-    const Pair k = shifted - kRound;
-    const PairBits bits = (PairBits)shifted;
-    const Pair r = ((xi - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
-    const Pair r2 = r * r;
+  const VBits kSign = (VBits{} + 1) << 63;
+  for (int i = 0; i < n; i += kLanes) {
+    V xi;
+    std::memcpy(&xi, x + i, sizeof xi);
+    const V shifted = xi * (2.0 / M_PI) + kRound;
+    const V k = shifted - kRound;
+    const VBits bits = (VBits)shifted;
+    const V r = ((xi - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
+    const V r2 = r * r;
     // 1/n! for the Taylor series
-    const Pair s =
+    const V s =
         r + r * r2 *
                 (-1.0 / 6 +
                  r2 * (1.0 / 120 +
@@ -56,7 +62,7 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
                              r2 * (1.0 / 362880 + r2 * (-1.0 / 39916800 +
                                                         r2 * (1.0 / 6227020800.0 +
                                                               r2 * (-1.0 / 1307674368000.0)))))));
-    const Pair c =
+    const V c =
         1.0 + r2 * (-0.5 + r2 * (1.0 / 24 +
                                  r2 * (-1.0 / 720 +
                                        r2 * (1.0 / 40320 +
@@ -65,18 +71,22 @@ inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n
                                                          r2 * (-1.0 / 87178291200.0 +
                                                                r2 * (1.0 / 20922789888000.0))))))));
     // Quadrant q = k mod 4: sin = (s, c, -s, -c)[q], cos = (c, -s, -c, s)[q].
-    const PairBits odd = bits & 1, half = (bits >> 1) & 1;
-    const PairBits swap = 0 - odd;  // all ones for odd q
-    const PairBits sb = (PairBits)s, cb = (PairBits)c;
-    const PairBits so = ((cb & swap) | (sb & ~swap)) ^ (kSign & (0 - half));
-    const PairBits co = ((sb & swap) | (cb & ~swap)) ^ (kSign & (0 - (half ^ odd)));
+    const VBits odd = bits & 1, half = (bits >> 1) & 1;
+    const VBits swap = 0 - odd;  // all ones for odd q
+    const VBits sb = (VBits)s, cb = (VBits)c;
+    const VBits so = ((cb & swap) | (sb & ~swap)) ^ (kSign & (0 - half));
+    const VBits co = ((sb & swap) | (cb & ~swap)) ^ (kSign & (0 - (half ^ odd)));
     std::memcpy(s_out + i, &so, sizeof so);
     std::memcpy(c_out + i, &co, sizeof co);
     // Beyond the reduction's range (joints without limits, or limits far beyond a turn) libm
     // takes over: a rare branch, and every finite angle stays right.
-    for (int k = i; k < i + 2; ++k)
+    for (int k = i; k < i + kLanes; ++k)
       if (std::abs(x[k]) >= 1e5) s_out[k] = std::sin(x[k]), c_out[k] = std::cos(x[k]);
   }
+}
+
+inline void fastSinCosArray(const double* x, double* s_out, double* c_out, int n) {
+  fastSinCosLanes<Pair, PairBits>(x, s_out, c_out, n);
 }
 
 }  // namespace
@@ -282,6 +292,7 @@ namespace {
 // operations. Every path forms the same products and sums in the same order (and never a fused
 // multiply-add), so the poses are the same to the bit.
 using Quad = double __attribute__((vector_size(32)));
+using QuadBits = std::int64_t __attribute__((vector_size(32)));
 
 struct ScalarQuad {
   double v[4];
@@ -379,8 +390,11 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
         const Step& st = steps[trig_steps[block_begin + t]];
         v[t] = st.multiplier * q[st.q_index] + st.offset;
       }
-      if (n & 1) v[n] = 0.0;
-      fastSinCosArray(v, sn, cs, n);
+      for (int t = n; t < kTrigBlock && t % 4 != 0; ++t) v[t] = 0.0;  // whole lanes
+      if (std::is_same<Column, Quad>::value)
+        fastSinCosLanes<Quad, QuadBits>(v, sn, cs, n);
+      else
+        fastSinCosArray(v, sn, cs, n);
       block_end = block_begin + n;
     }
     Column a[4];
