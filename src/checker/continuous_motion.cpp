@@ -240,9 +240,11 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
     if (sa.grid < 0) sa.grid = m.clearanceGrid().clear(sa.mid, r) ? 1 : 0;
     if (sa.grid) return true;
     if (detail::sqDistPointAabb(sa.mid, m.obstacleBoxes()[u.b]) > r * r) return true;
+    // A turned obstacle: the swept sphere against its oriented box.
+    const Obb& ob = m.obstacleObbs()[u.b];
+    if (!ob.axis_aligned && ballApartObb(sa.mid, r, ob)) return true;
     // The element's local box at both ends, bounded in the obstacle's box frame, grown by the
     // padding: apart along one of the frame's axes, the swept hull is apart too.
-    const Obb& ob = m.obstacleObbs()[u.b];
     posed(u.a);
     Eigen::Vector3d lo, hi;
     sweptBox(ob.R, ob.c, sa.XS0, sa.XS1, ea.box_center_S, ea.box_half, &lo, &hi);
