@@ -1,6 +1,8 @@
 // Checker setup from files (see checker_setup.h).
 #include "dss/checker/checker_setup.h"
 
+#include <algorithm>
+#include <mutex>
 #include <stdexcept>
 
 #include "dss/checker/dss_checker.h"
@@ -35,13 +37,44 @@ LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path
   return r;
 }
 
+namespace {
+// The bounded copies made by withWorkspace, kept while the robot they were made from lives: the
+// same robot and box give the same copy, so that a folder of problems with one workspace
+// shares one robot object (and the self-pair tables cached for it, self_pair_table_cache.h)
+// instead of copying the robot, meshes and all, for every problem.
+struct BoundedCopy {
+  std::weak_ptr<const RobotModel> from;
+  const RobotModel* from_ptr = nullptr;
+  Eigen::Vector3d lo, hi;
+  std::shared_ptr<const RobotModel> copy;
+};
+constexpr std::size_t kMaxBoundedCopies = 8;
+std::mutex bounded_mutex;
+std::vector<BoundedCopy> bounded_copies;
+}  // namespace
+
 LoadedRobot withWorkspace(const LoadedRobot& robot, const Eigen::Vector3d& lo,
                           const Eigen::Vector3d& hi) {
   if (robot.model->multi_dof_joints.empty()) return robot;
-  auto model = std::make_shared<RobotModel>(*robot.model);
-  setMultiDofTranslationBounds(*model, lo, hi);
   LoadedRobot r = robot;
-  r.model = std::move(model);
+  {
+    std::lock_guard<std::mutex> lock(bounded_mutex);
+    // Copies of robots that are gone go first.
+    bounded_copies.erase(std::remove_if(bounded_copies.begin(), bounded_copies.end(),
+                                        [](const BoundedCopy& c) { return c.from.expired(); }),
+                         bounded_copies.end());
+    for (const BoundedCopy& c : bounded_copies)
+      if (c.from_ptr == robot.model.get() && c.lo == lo && c.hi == hi) {
+        r.model = c.copy;
+        return r;
+      }
+  }
+  auto model = std::make_shared<RobotModel>(*robot.model);
+  setMultiDofTranslationBounds(*model, lo, hi);  // throws for a box that is not finite
+  r.model = model;
+  std::lock_guard<std::mutex> lock(bounded_mutex);
+  if (bounded_copies.size() >= kMaxBoundedCopies) bounded_copies.erase(bounded_copies.begin());
+  bounded_copies.push_back({robot.model, robot.model.get(), lo, hi, std::move(model)});
   return r;
 }
 

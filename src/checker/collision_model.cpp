@@ -12,6 +12,7 @@
 #include "dss/checker/inner_shapes.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/pose_links.h"
+#include "dss/checker/self_pair_table_cache.h"
 #include "dss/robot/multi_dof.h"
 
 namespace dss {
@@ -398,8 +399,8 @@ void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {
   };
   std::vector<SelfPairTable> tables;
   for (SelfPair& pair : self_pairs_) {
-    std::optional<SelfPairTable> t = buildSelfPairTable(
-        *robot_, kin_, held_, in_group_, side(pair.a), side(pair.b), options.self_table_cells_1d,
+    std::optional<SelfPairTable> t = cachedSelfPairTable(
+        robot_, kin_, held_, in_group_, side(pair.a), side(pair.b), options.self_table_cells_1d,
         options.self_table_cells_2d, options.self_table_padding);
     if (!t) continue;
     pair.table = int(tables.size());

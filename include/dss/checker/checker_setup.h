@@ -35,7 +35,9 @@ LoadedRobot loadRobot(const std::string& urdf_path, const std::string& srdf_path
 
 /// The robot with the translation of its planar and floating joints bounded by the box
 /// [lo, hi] (setMultiDofTranslationBounds; e.g. a request's workspace_parameters); the robot
-/// itself when it has no such joint. Throws std::invalid_argument for a box that is not finite.
+/// itself when it has no such joint. The same robot and box give the same bounded robot object
+/// while the robot lives (thread-safe), so that models of many problems share it and its cached
+/// self-pair tables. Throws std::invalid_argument for a box that is not finite.
 LoadedRobot withWorkspace(const LoadedRobot& robot, const Eigen::Vector3d& lo,
                           const Eigen::Vector3d& hi);
 
