@@ -10,6 +10,9 @@ namespace dss {
 namespace {
 
 constexpr std::size_t kMaxCells = std::size_t(32) << 20;
+// Pairs without a table hold no cells but still an entry (a held value that changes with every
+// request would otherwise grow the list, and the lookups with it).
+constexpr std::size_t kMaxEntries = 4096;
 
 struct Key {
   std::weak_ptr<const RobotModel> robot;
@@ -89,7 +92,8 @@ std::optional<SelfPairTable> cachedSelfPairTable(const std::shared_ptr<const Rob
     } else {
       ++it;
     }
-  while (!c.entries.empty() && c.cells + entry.cells > kMaxCells) {
+  while (!c.entries.empty() &&
+         (c.cells + entry.cells > kMaxCells || c.entries.size() >= kMaxEntries)) {
     c.cells -= c.entries.front().cells;
     c.entries.pop_front();
   }

@@ -10,6 +10,7 @@
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/self_pair_table_cache.h"
+#include "dss/robot/kinematics.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 
@@ -153,6 +154,35 @@ BOOST_AUTO_TEST_CASE(one_bounded_robot_per_robot_and_workspace) {
   BOOST_TEST(dss::selfPairTableCacheStats().hits - s.hits == m2.model->selfPairs().size());
   BOOST_TEST(dss::selfPairTableCacheStats().misses == s.misses);
   requireSameTables(*m1.model, *m2.model);
+}
+
+BOOST_AUTO_TEST_CASE(the_cache_holds_a_bounded_number_of_entries) {
+  // A pair far apart in the chain (no table: more than two joints between the links) looked up
+  // with a held value that changes every time: a new entry each time, never more than 4096.
+  dss::clearSelfPairTableCache();
+  const Arm arm;
+  const dss::RobotModel& m = *arm.robot.model;
+  const dss::Kinematics kin(m);
+  dss::SelfPairSide a, b;
+  for (std::size_t l = 0; l < m.links.size(); ++l)
+    if (m.links[l].hasGeometry()) {
+      dss::SelfPairSide& side = a.link < 0 ? a : b;
+      side.link = int(l);
+      side.elements.clear();
+      for (const auto& e : m.links[l].collisions) side.elements.push_back(&e);
+      side.radius = 1.0;
+    }
+  BOOST_REQUIRE(a.link >= 0 && b.link > a.link);
+  std::vector<double> held(m.numActiveJoints(), 0.0);
+  const std::vector<char> in_group(m.numActiveJoints(), 1);
+  std::size_t most = 0;
+  for (int i = 0; i < 4200; ++i) {
+    held[0] = 1e-4 * i;
+    BOOST_TEST(!dss::cachedSelfPairTable(arm.robot.model, kin, held, in_group, a, b, 64, 16, 0.0));
+    most = std::max(most, dss::selfPairTableCacheStats().entries);
+  }
+  BOOST_TEST(most == 4096u);
+  dss::clearSelfPairTableCache();
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -4,8 +4,8 @@
 // scene that changes between requests) build each table once. Only models built from the same
 // RobotModel object (the same shared_ptr, still alive) share entries, and every part of the key
 // must match exactly, so a cached table is the one buildSelfPairTable would return.
-// Thread-safe; tables are built outside the lock. The cache holds at most kMaxCells cells
-// (1 byte each), dropping the oldest entries first.
+// Thread-safe; tables are built outside the lock. The cache holds at most 32 M cells (1 byte
+// each) and 4096 entries, dropping the oldest first.
 #pragma once
 
 #include <cstddef>
