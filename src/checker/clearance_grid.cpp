@@ -8,18 +8,33 @@
 namespace dss {
 
 namespace {
-// A lower bound on the distance from p to obstacle k: the distance to its world box, or to its
-// oriented box less that one's rounding when larger. Only bounds below `cap` matter to the
-// caller: a world box at least that far is returned as it is.
-double distanceBound(const Eigen::Vector3d& p, const std::vector<Aabb>& boxes,
-                     const std::vector<Obb>& obbs, std::size_t k,
-                     double cap = std::numeric_limits<double>::infinity()) {
-  const double d = std::sqrt(detail::sqDistPointAabb(p, boxes[k]));
-  if (!(d < cap) || obbs.empty() || obbs[k].axis_aligned) return d;
-  double error;
-  const double o = std::sqrt(sqDistPointObb(p, obbs[k], &error)) - error;
-  return o > d ? o : d;  // NaN: d
-}
+// The obstacles as the grid measures them: the squared distance to an obstacle's world box,
+// raised to that of its oriented box when the obstacle is turned and that is larger; and one
+// bound, at a point c, on the rounding of every oriented-box distance (sqDistPointObb's error
+// for any box: |t|_1 <= 3 |c|_max + sqrt(3) |b.c|).
+class Measure {
+ public:
+  explicit Measure(const std::vector<Obb>& obbs) : obbs_(obbs) {
+    for (const Obb& b : obbs)
+      if (!b.axis_aligned) reach_ = std::max(reach_, std::sqrt(3.0) * b.c.norm() + b.h.sum());
+  }
+  /// `b2`: the squared distance from c to obstacle k's world box.
+  double sqDistance(const Eigen::Vector3d& c, std::size_t k, double b2) const {
+    if (reach_ >= 0.0 && !obbs_[k].axis_aligned) {
+      double error;
+      const double o2 = sqDistPointObb(c, obbs_[k], &error);
+      if (o2 > b2) b2 = o2;  // NaN: the world box's
+    }
+    return b2;
+  }
+  double rounding(const Eigen::Vector3d& c) const {
+    return reach_ < 0.0 ? 0.0 : 1e-9 * (3.0 * c.cwiseAbs().maxCoeff() + reach_) + 1e-12;
+  }
+
+ private:
+  const std::vector<Obb>& obbs_;
+  double reach_ = -1.0;  // negative: no turned obstacle
+};
 }  // namespace
 
 ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
@@ -50,38 +65,25 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   bound_.assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0);
   // Every point of a voxel lies within half its diagonal of the centre, so the centre's
   // distance to a box minus that is a lower bound for the whole voxel. A margin far above
-  // the rounding of these few operations is taken off before rounding down to the quantum;
-  // with oriented boxes, also a bound on the rounding of the distance in a box's frame
-  // (sqDistPointObb's, for any box: |t|_1 <= 3 |c|_max + sqrt(3) |b.c|).
+  // the rounding of these few operations is taken off before rounding down to the quantum,
+  // with that of the oriented-box distances.
   const double half_diagonal = 0.5 * std::sqrt(3.0) * size;
-  bool turned = false;
-  double obb_reach = 0.0;
-  for (const Obb& b : obbs)
-    if (!b.axis_aligned) {
-      turned = true;
-      obb_reach = std::max(obb_reach, std::sqrt(3.0) * b.c.norm() + b.h.sum());
-    }
+  const Measure measure(obbs);
   std::size_t i = 0;
   for (int z = 0; z < n[2]; ++z)
     for (int y = 0; y < n[1]; ++y)
       for (int x = 0; x < n[0]; ++x, ++i) {
         const Eigen::Vector3d c = origin_ + size * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-        // The nearest obstacle by the larger of its two squared distances; a world box no
-        // nearer than the best so far cannot lower it, and its oriented box is not needed.
+        // The nearest obstacle; a world box no nearer than the best so far cannot lower it, and
+        // its oriented box is not needed.
         double d2 = std::numeric_limits<double>::infinity();
         for (std::size_t k = 0; k < boxes.size(); ++k) {
-          double b2 = detail::sqDistPointAabb(c, boxes[k]);
+          const double b2 = detail::sqDistPointAabb(c, boxes[k]);
           if (!(b2 < d2)) continue;
-          if (turned && !obbs[k].axis_aligned) {
-            double error;
-            const double o2 = sqDistPointObb(c, obbs[k], &error);
-            if (o2 > b2) b2 = o2;  // NaN: the world box's
-          }
-          if (b2 < d2) d2 = b2;
+          d2 = std::min(d2, measure.sqDistance(c, k, b2));
         }
-        const double cmax = c.cwiseAbs().maxCoeff();
-        const double margin = 1e-9 * (1.0 + cmax + half_diagonal) +
-                              (turned ? 1e-9 * (3.0 * cmax + obb_reach) + 1e-12 : 0.0);
+        const double margin =
+            1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal) + measure.rounding(c);
         const double lower = std::sqrt(d2) - half_diagonal - margin;
         if (!(lower > 0.0)) continue;  // also NaN
         bound_[i] = static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
@@ -105,6 +107,7 @@ void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radiu
   // point within rounding of a face.
   const double half_diagonal = 0.5 * std::sqrt(3.0) * size_;
   const double reach = radius + half_diagonal + 1e-6 * size_;
+  const Measure measure(obbs);
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     const Aabb& b = boxes[k];
     int lo[3], hi[3];
@@ -120,8 +123,9 @@ void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radiu
         for (int x = lo[0]; x < hi[0]; ++x) {
           const Eigen::Vector3d c = origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
           const double margin = 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + reach);
-          const double r = reach + margin;
-          if (!(distanceBound(c, boxes, obbs, k, r) <= r)) continue;
+          const double r = reach + margin, r_obb = r + measure.rounding(c);
+          const double b2 = detail::sqDistPointAabb(c, b);
+          if (!(b2 <= r * r) || !(measure.sqDistance(c, k, b2) <= r_obb * r_obb)) continue;
           candidates_[(z * stride_z_ + y * stride_y_ + x) * words + k / 64] |= bit;
         }
   }
