@@ -79,6 +79,9 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   pruneObstacles(options);
   buildSelfTables(options);
   pair_blocks_ = buildPairBlocks(*this, options.pair_block_min_saving);
+  base_table_ = BaseSceneTable(*this, options.base_table_cells, options.base_table_padding);
+  for (std::size_t i = 0; i < base_table_.slots().size(); ++i)
+    slots_[std::size_t(base_table_.slots()[i])].base_bit = std::uint8_t(1u << i);
 }
 
 RobotModel CollisionModel::foldedRobot() const {
@@ -438,6 +441,15 @@ std::string CollisionModel::summary() const {
       cells += t.cell_state.size(), free += t.num_free, colliding += t.num_colliding;
     os << ", " << self_tables_.size() << " self-pair tables (of " << cells << " cells " << free
        << " certified free, " << colliding << " colliding)";
+  }
+  if (!base_table_.empty()) {
+    os << ", base-scene table (" << base_table_.numCells() << " cells, "
+       << base_table_.numColliding() << " colliding; free for";
+    for (std::size_t i = 0; i < base_table_.slots().size(); ++i)
+      os << (i ? ", " : " ")
+         << robot_->links[std::size_t(slots_[std::size_t(base_table_.slots()[i])].link)].name
+         << " in " << base_table_.numFree(int(i));
+    os << ")";
   }
   return os.str();
 }

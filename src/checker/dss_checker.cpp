@@ -34,17 +34,28 @@ bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) cons
   const CollisionModel& m = model();
   Scratch& s = scratch();
   s.reserve(m);
+  // A planar base's table: a colliding cell answers before any kinematics; links certified
+  // free there skip their robot-scene stages.
+  std::uint8_t base_free = 0;
+  if (const BaseSceneTable& bt = m.baseTable(); !bt.empty()) {
+    const std::uint8_t cell = bt.read(q);
+    if (cell == BaseSceneTable::kColliding) {
+      if (settings_.scene_padding >= bt.padding()) return true;
+    } else if (settings_.scene_padding <= bt.padding()) {
+      base_free = cell;
+    }
+  }
   const bool held = m.heldMatch(q);
   if (m.selfTables().read(q, held, settings_.self_padding, s.skip.data())) return true;
   // With the held joints at their values the sweep needs only the pose links.
   (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
   return collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding,
-                    settings_.self_padding);
+                    settings_.self_padding, base_free);
 }
 
 bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
-                            const unsigned char* skip, double scene_padding,
-                            double self_padding) const {
+                            const unsigned char* skip, double scene_padding, double self_padding,
+                            std::uint8_t base_free) const {
   const CollisionModel& m = model();
   const auto& elements = m.elements();
   const auto& obstacles = m.scene().obstacles;
@@ -69,6 +80,7 @@ bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
   opt.self_padding = self_padding;
   opt.obb_stage = settings_.obb_stage;
   opt.inner_shapes = settings_.obb_stage;
+  opt.base_free = base_free;
   const bool hit = pose_links ? sweep<SweepPoses::kPoseLinks>(m, X_WL, skip, opt, scene, self)
                               : sweep<SweepPoses::kOwnLinks>(m, X_WL, skip, opt, scene, self);
   CounterSlots::Slot& c = counterSlot();

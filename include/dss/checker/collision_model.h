@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "dss/checker/base_scene_table.h"
 #include "dss/checker/clearance_grid.h"
 #include "dss/checker/obb.h"
 #include "dss/checker/pair_blocks.h"
@@ -60,6 +61,11 @@ struct CollisionModelOptions {
   /// group, the ball rules it out often enough to save at least this many per-pair sphere
   /// tests per state (the ball test itself costs about one). 0 keeps every ball.
   double pair_block_min_saving = 1.5;
+  /// The base-scene table (base_scene_table.h) of a planar base: at most about this many
+  /// cells (0: no table; one byte each), certified at this scene padding (a checker uses its
+  /// colliding cells at a scene padding of at least this, its free ones at most this).
+  std::size_t base_table_cells = std::size_t(1) << 16;
+  double base_table_padding = 0.0;
 };
 
 class CollisionModel {
@@ -112,6 +118,8 @@ class CollisionModel {
     Eigen::Vector3d reach_center_W = Eigen::Vector3d::Zero();
     Eigen::Vector3d reach_half_W = Eigen::Vector3d::Zero();
     double reach_radius = 0.0;
+    /// Its bit in the base-scene table's cells (0: not tabled).
+    std::uint8_t base_bit = 0;
   };
   struct SelfPair {
     int a = -1, b = -1;       ///< slots
@@ -155,6 +163,8 @@ class CollisionModel {
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
   const SelfPairTables& selfTables() const { return self_tables_; }
   const std::vector<PairBlock>& pairBlocks() const { return pair_blocks_; }
+  /// The planar base's table against the scene (empty without one).
+  const BaseSceneTable& baseTable() const { return base_table_; }
   /// World boxes and oriented boxes of the kept obstacles.
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
@@ -213,6 +223,7 @@ class CollisionModel {
   std::vector<SelfPair> self_pairs_;
   std::vector<PairBlock> pair_blocks_;
   SelfPairTables self_tables_;
+  BaseSceneTable base_table_;
   std::vector<Aabb> boxes_;
   std::vector<Obb> obbs_;
   std::vector<Eigen::Vector3d> inner_half_;

@@ -12,6 +12,7 @@
 // apart than its padding + r.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -53,8 +54,9 @@ class DssChecker : public StateChecker {
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
+  /// `base_free`: the base-scene table's bits for the state (none by default).
   bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,
-                  double scene_padding, double self_padding) const;
+                  double scene_padding, double self_padding, std::uint8_t base_free = 0) const;
 
   Settings settings_;
 };

@@ -32,6 +32,9 @@ struct SweepOptions {
   /// shapes (hulls, not the meshes inside them). Self pairs never use it (their collisions are
   /// mostly decided by the tables).
   bool inner_shapes = false;
+  /// The base-scene table's bits for the state (base_scene_table.h): a slot whose
+  /// Slot::base_bit is set here is certified free of the scene and skips its stages.
+  std::uint8_t base_free = 0;
 };
 
 /// Where the sweep takes a slot's pose from.
@@ -117,7 +120,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     const Eigen::Isometry3d& X = X_WL[linkOf(s)];
     centers[k] = X.linear() * slotCenter(s) + X.translation();
     const std::size_t nb = s.obstacles.size();
-    if (nb == 0) continue;
+    if (nb == 0 || (s.base_bit & opt.base_free)) continue;
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid.clear(c, r)) continue;

@@ -1,0 +1,188 @@
+// The base-scene table of a planar base (dss/checker/base_scene_table.h): every colliding cell
+// holds a state whose tabled links really collide (exact DSS), every link certified free is
+// apart from every obstacle (exact DSS), at random states and on the cells' borders (x and y
+// on a border, on the bounds, theta at +-pi and whole turns away), and the checker answers
+// exactly as without the table, at zero and at a larger scene padding.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "dss/checker/base_scene_table.h"
+#include "dss/checker/checker_setup.h"
+#include "dss/checker/dss_checker.h"
+#include "dss/core/any_shape_query.h"
+#include "dss/robot/multi_dof.h"
+#include "dss/scene/plan_request.h"
+#include "dss/scene/scene_loader.h"
+#include "support/checker_fixtures.h"
+
+namespace {
+
+const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots/";
+
+struct Mobile {
+  std::shared_ptr<const dss::CollisionModel> with, without;
+};
+
+// The robot `name` in `scene` with its request's workspace; the second model has no table.
+Mobile load(const std::string& name, const std::string& scene) {
+  const std::string dir = kRobots + name;
+  const auto req = dss::loadPlanRequestYaml(dir + "/scenes/" + scene + "_request.yaml");
+  BOOST_REQUIRE(req.workspace.has_value());
+  const auto r =
+      dss::withWorkspace(dss::loadRobot(dir + "/" + name + ".urdf", dir + "/" + name + ".srdf"),
+                         req.workspace->first, req.workspace->second);
+  std::map<std::string, double> start = req.startState();
+  for (const auto& [n, v] : dss::multiDofStateValues(*r.model, req.start_multi_dof)) start[n] = v;
+  const std::string scene_file = dir + "/scenes/" + scene + ".yaml";
+  const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(scene_file), req.group_name, start);
+  dss::CollisionModelOptions off;
+  off.base_table_cells = 0;
+  auto without = std::make_shared<const dss::CollisionModel>(r.model, r.srdf ? &*r.srdf : nullptr,
+                                                             dss::loadScene(scene_file),
+                                                             p.group_active, p.held, off);
+  return {p.model, without};
+}
+
+// The active indices of the planar joint's x, y and theta.
+std::array<int, 3> planarVars(const dss::RobotModel& robot) {
+  for (const auto& md : robot.multi_dof_joints)
+    if (md.type == dss::MultiDofType::kPlanar)
+      return {robot.joints[md.joints[0]].active_index, robot.joints[md.joints[1]].active_index,
+              robot.joints[md.joints[2]].active_index};
+  BOOST_FAIL("no planar joint");
+  return {-1, -1, -1};
+}
+
+// Random states of the group, half of them moved onto a cell border in x, y or theta (or onto
+// the bounds), and theta sometimes whole turns away from [-pi, pi).
+std::vector<double> sample(const dss::CollisionModel& m, std::mt19937_64& rng) {
+  std::vector<double> q = dss_test::randomGroupState(m, rng);
+  const dss::BaseSceneTable& t = m.baseTable();
+  const auto v = planarVars(m.robot());
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double tiny = std::ldexp(1.0, -40);
+  for (int k = 0; k < 3; ++k) {
+    if (u(rng) > 0.5) continue;
+    const dss::RobotJoint& j = m.robot().joints[m.robot().active_joints[v[k]]];
+    const double lo = k < 2 ? j.limits.lower : -M_PI, hi = k < 2 ? j.limits.upper : M_PI;
+    const int n = t.cells(k);
+    const int i = std::uniform_int_distribution<int>(0, n)(rng);
+    double x = lo + (hi - lo) * i / n;
+    const double r = u(rng);
+    if (r < 1.0 / 3) x = std::nextafter(x, -INFINITY);
+    if (r > 2.0 / 3) x = std::nextafter(x, INFINITY);
+    if (k < 2) x = std::min(std::max(x, lo), hi);  // (within the bounds: tiny steps outside)
+    q[v[k]] = x + (k < 2 ? 0.0 : tiny * (u(rng) - 0.5));
+  }
+  const double turns[] = {0.0, 0.0, 2.0, -2.0, 6.0, -40.0};
+  q[v[2]] += M_PI * turns[std::uniform_int_distribution<int>(0, 5)(rng)];
+  return q;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(base_scene_table)
+
+BOOST_AUTO_TEST_CASE(built_for_the_planar_base_only) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  const dss::BaseSceneTable& t = mb.with->baseTable();
+  BOOST_TEST_REQUIRE(!t.empty());
+  BOOST_TEST(mb.without->baseTable().empty());
+  // The base (and the mast fixed on it) are tabled; the lift and the arm move by other joints.
+  BOOST_TEST(t.slots().size() == 2u);
+  for (int s : t.slots())
+    BOOST_TEST((mb.with->robot().links[mb.with->slots()[s].link].name == "base_link" ||
+                mb.with->robot().links[mb.with->slots()[s].link].name == "mast_link"));
+  BOOST_TEST(t.numCells() <= 4u * dss::CollisionModelOptions().base_table_cells);
+  BOOST_TEST(t.cells(2) >= 8);
+  BOOST_TEST(t.numColliding() > t.numCells() / 20);
+  BOOST_TEST(t.numFree(0) > t.numCells() / 20);
+  BOOST_TEST(t.maxMove() > 0.0);
+  BOOST_TEST(t.maxMove() < 0.2);
+  // A floating base and a fixed arm get none.
+  BOOST_TEST(load("dss_free_flyer", "window").with->baseTable().empty());
+  BOOST_TEST(dss_test::shelfSetup(dss_test::loadArm()).model->baseTable().empty());
+}
+
+BOOST_AUTO_TEST_CASE(cells_agree_with_the_exact_decision) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  const dss::CollisionModel& m = *mb.with;
+  const dss::BaseSceneTable& t = m.baseTable();
+  BOOST_TEST_REQUIRE(!t.empty());
+  const auto& obstacles = m.scene().obstacles;
+  std::vector<Eigen::Isometry3d> X(m.robot().links.size(), Eigen::Isometry3d::Identity());
+  std::mt19937_64 rng(41);
+  std::size_t colliding = 0, free_links = 0;
+  for (int k = 0; k < 30000; ++k) {
+    const std::vector<double> q = sample(m, rng);
+    BOOST_TEST_REQUIRE(m.withinBounds(q.data()));
+    const std::uint8_t cell = t.read(q.data());
+    if (cell == 0) continue;
+    m.kinematics().computeLinkPoses(q.data(), X.data());
+    // Exact DSS between an element of a tabled link and an obstacle.
+    auto touches = [&](int e, int o) {
+      const auto& el = m.elements()[e];
+      return dss::intersect(el.source->shape, X[el.link] * el.source->X_LS, obstacles[o].shape,
+                            obstacles[o].X_WO)
+          .intersect;
+    };
+    if (cell == dss::BaseSceneTable::kColliding) {
+      bool any = false;
+      for (int s : t.slots()) {
+        const auto& slot = m.slots()[s];
+        for (int e = slot.first_element; e < slot.first_element + slot.num_elements && !any; ++e)
+          for (int o : slot.obstacles) any = any || touches(e, o);
+      }
+      BOOST_TEST_REQUIRE(any, "state " << k << ": a colliding cell with its links apart");
+      ++colliding;
+      continue;
+    }
+    for (std::size_t i = 0; i < t.slots().size(); ++i) {
+      if (!((cell >> i) & 1u)) continue;
+      const auto& slot = m.slots()[t.slots()[i]];
+      for (int e = slot.first_element; e < slot.first_element + slot.num_elements; ++e)
+        for (std::size_t o = 0; o < obstacles.size(); ++o)
+          BOOST_TEST_REQUIRE(!touches(e, int(o)),
+                             "state " << k << ": link " << i << " certified free touches " << o);
+      ++free_links;
+    }
+  }
+  BOOST_TEST_MESSAGE(colliding << " states in colliding cells, " << free_links
+                               << " links certified free");
+  BOOST_TEST(colliding > 3000u);
+  BOOST_TEST(free_links > 3000u);
+}
+
+BOOST_AUTO_TEST_CASE(answers_match_without_the_table) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  for (double padding : {0.0, 0.03}) {
+    dss::DssCheckerSettings set;
+    set.scene_padding = padding;
+    const dss::DssChecker with(mb.with, set), without(mb.without, set);
+    std::mt19937_64 rng(43);
+    std::size_t hits = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const std::vector<double> q = sample(*mb.with, rng);
+      const bool a = with.collides(q.data()), b = without.collides(q.data());
+      BOOST_TEST_REQUIRE(a == b, "state " << k << ", padding " << padding);
+      hits += a;
+    }
+    BOOST_TEST(hits > 5000u);
+    // The table saves narrow-phase and box work: fewer pair tests with it.
+    BOOST_TEST(with.counters().pair_tests <= without.counters().pair_tests);
+  }
+  // Non-finite values stay invalid input.
+  const dss::DssChecker with(mb.with);
+  std::vector<double> q = mb.with->held();
+  for (double bad : {NAN, INFINITY, -INFINITY}) {
+    for (int v : planarVars(mb.with->robot())) {
+      std::vector<double> x = q;
+      x[v] = bad;
+      BOOST_TEST((with.check(x.data()) == dss::StateVerdict::kInvalidInput));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
