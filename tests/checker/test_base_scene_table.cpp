@@ -19,30 +19,20 @@
 
 namespace {
 
-const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots/";
-
 struct Mobile {
   std::shared_ptr<const dss::CollisionModel> with, without;
 };
 
 // The robot `name` in `scene` with its request's workspace; the second model has no table.
 Mobile load(const std::string& name, const std::string& scene) {
-  const std::string dir = kRobots + name;
-  const auto req = dss::loadPlanRequestYaml(dir + "/scenes/" + scene + "_request.yaml");
-  BOOST_REQUIRE(req.workspace.has_value());
-  const auto r =
-      dss::withWorkspace(dss::loadRobot(dir + "/" + name + ".urdf", dir + "/" + name + ".srdf"),
-                         req.workspace->first, req.workspace->second);
-  std::map<std::string, double> start = req.startState();
-  for (const auto& [n, v] : dss::multiDofStateValues(*r.model, req.start_multi_dof)) start[n] = v;
-  const std::string scene_file = dir + "/scenes/" + scene + ".yaml";
-  const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(scene_file), req.group_name, start);
+  const dss_test::MobileSetup m = dss_test::mobileSetup(name, scene);
   dss::CollisionModelOptions off;
   off.base_table_cells = 0;
-  auto without = std::make_shared<const dss::CollisionModel>(r.model, r.srdf ? &*r.srdf : nullptr,
-                                                             dss::loadScene(scene_file),
-                                                             p.group_active, p.held, off);
-  return {p.model, without};
+  const dss::LoadedRobot& r = m.robot;
+  auto without = std::make_shared<const dss::CollisionModel>(
+      r.model, r.srdf ? &*r.srdf : nullptr, dss::loadScene(m.scene_file), m.setup.group_active,
+      m.setup.held, off);
+  return {m.setup.model, without};
 }
 
 // The active indices of the planar joint's x, y and theta.

@@ -376,17 +376,8 @@ BOOST_AUTO_TEST_CASE(inner_balls_are_inside_and_keep_answers_on_our_arm) {
 // flyer (two boxes) in its room: the inner boxes are inside and decide most collisions.
 BOOST_AUTO_TEST_CASE(inner_boxes_keep_answers_on_the_mobile_robots) {
   for (const char* name : {"dss_mobile_base", "dss_free_flyer"}) {
-    const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/" + name;
     const std::string scene = std::string(name) == "dss_mobile_base" ? "aisle" : "window";
-    const auto req = dss::loadPlanRequestYaml(dir + "/scenes/" + scene + "_request.yaml");
-    BOOST_REQUIRE(req.workspace.has_value());
-    const auto r =
-        dss::withWorkspace(dss::loadRobot(dir + "/" + name + ".urdf", dir + "/" + name + ".srdf"),
-                           req.workspace->first, req.workspace->second);
-    std::map<std::string, double> start = req.startState();
-    for (const auto& [n, v] : dss::multiDofStateValues(*r.model, req.start_multi_dof)) start[n] = v;
-    const dss::ModelSetup p = dss::setupModel(r, dss::loadScene(dir + "/scenes/" + scene + ".yaml"),
-                                              req.group_name, start);
+    const dss::ModelSetup p = dss_test::mobileSetup(name, scene).setup;
     BOOST_TEST(checkBoxesInside(*p.model) >= 2u);
     BOOST_TEST(compareAnswers(*p.model, 4000, 29) > 1000u, name);
   }

@@ -4,11 +4,14 @@
 #pragma once
 
 #include <cmath>
+#include <map>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "dss/checker/checker_setup.h"
+#include "dss/robot/multi_dof.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 
@@ -46,6 +49,29 @@ inline std::vector<double> randomGroupState(const dss::CollisionModel& m, std::m
     q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
   }
   return q;
+}
+
+/// One of our multi-DOF robots (robots/NAME) bounded by its request's workspace, and its
+/// model in scenes/SCENE.yaml at the request's start (multi-DOF values included).
+struct MobileSetup {
+  dss::LoadedRobot robot;
+  dss::ModelSetup setup;
+  std::string scene_file;
+};
+inline MobileSetup mobileSetup(const std::string& name, const std::string& scene) {
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/" + name;
+  const auto req = dss::loadPlanRequestYaml(dir + "/scenes/" + scene + "_request.yaml");
+  if (!req.workspace) throw std::runtime_error(name + ": the request has no workspace");
+  MobileSetup m;
+  m.robot =
+      dss::withWorkspace(dss::loadRobot(dir + "/" + name + ".urdf", dir + "/" + name + ".srdf"),
+                         req.workspace->first, req.workspace->second);
+  std::map<std::string, double> start = req.startState();
+  for (const auto& [n, v] : dss::multiDofStateValues(*m.robot.model, req.start_multi_dof))
+    start[n] = v;
+  m.scene_file = dir + "/scenes/" + scene + ".yaml";
+  m.setup = dss::setupModel(m.robot, dss::loadScene(m.scene_file), req.group_name, start);
+  return m;
 }
 
 }  // namespace dss_test
