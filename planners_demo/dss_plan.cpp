@@ -84,6 +84,8 @@ const char* kUsage =
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (bounds of planar and floating\n"
     "           joints' translation; default: the request's workspace_parameters)\n"
+    "           --base-table-cells N (a planar base's table against the scene: at most about\n"
+    "           N cells, 0 for none; default 65536)\n"
     "           --shard K/N (with --problems: every N-th problem in name order, from the K-th)\n"
     "           --path FILE (CSV of the solution: every joint; several problems:\n"
     "           FILE.<problem>.csv)\n"
@@ -168,8 +170,9 @@ struct Args {
   unsigned runs = 10;
   std::string log = "dss_plan_benchmark.log";
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
-  long shard_k = 0, shard_n = 0;                        // --shard K/N (0: every problem)
-  std::vector<std::string> summarize;                   // --summarize FILE...
+  long base_table_cells = -1;          // --base-table-cells (-1: the model's default)
+  long shard_k = 0, shard_n = 0;       // --shard K/N (0: every problem)
+  std::vector<std::string> summarize;  // --summarize FILE...
   std::vector<double> workspace;  // --workspace: min x, y, z, max x, y, z (empty: the request's)
 };
 
@@ -242,7 +245,10 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& loaded_robot,
       std::cerr << "dss_plan: " << files.name << ": warning: " << files.request << ": " << w
                 << "\n";
   }
-  LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, a.padding),
+  dss::CollisionModelOptions options;
+  options.prune_margin = a.padding;
+  if (a.base_table_cells >= 0) options.base_table_cells = std::size_t(a.base_table_cells);
+  LoadedProblem lp{dss::makeProblem(robot, std::move(scene), req.group_name, start, options),
                    {},
                    {},
                    std::move(loaded)};
@@ -710,6 +716,8 @@ int run(int argc, char** argv) {
       a.self_padding = cli.number(0.0, 1e3);
     else if (cli.option("--workspace"))
       a.workspace = cli.numbers(6);
+    else if (cli.option("--base-table-cells"))
+      a.base_table_cells = static_cast<long>(cli.integer(0, 1 << 24));
     else if (cli.option("--resolution"))
       a.resolution = cli.number(0.0, 1.0);
     else if (cli.option("--path"))

@@ -42,6 +42,8 @@ const char* kUsage =
     "                 [--mode exact|double|float] [--no-obb-stage] [--threads N]\n"
     "                 [--workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]  (bounds of planar and\n"
     "                 floating joints' translation; needed when the group moves one)\n"
+    "                 [--base-table-cells N]  (a planar base's table against the scene: at\n"
+    "                 most about N cells, 0 for none; default 65536)\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
@@ -145,6 +147,7 @@ nlohmann::json describe(const dss::Problem& p) {
 int run(int argc, char** argv) {
   std::string robot, srdf, scene_path, group, states, checkers = "dss";
   double padding = 0.0, self_padding = 0.0;
+  long base_table_cells = -1;  // -1: the model's default
   long random_n = 0;
   unsigned long seed = 1;
   int repeat = 0;
@@ -174,6 +177,8 @@ int run(int argc, char** argv) {
       padding = cli.number(0, kMaxPadding);
     else if (cli.option("--self-padding"))
       self_padding = cli.number(0, kMaxPadding);
+    else if (cli.option("--base-table-cells"))
+      base_table_cells = static_cast<long>(cli.integer(0, 1 << 24));
     else if (cli.option("--random"))
       random_n = cli.integer(1, kMaxCount);
     else if (cli.option("--seed"))
@@ -235,7 +240,10 @@ int run(int argc, char** argv) {
   }
   dss::Scene scene;
   if (!scene_path.empty()) scene = dss::loadScene(scene_path);
-  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, padding);
+  dss::CollisionModelOptions options;
+  options.prune_margin = padding;
+  if (base_table_cells >= 0) options.base_table_cells = std::size_t(base_table_cells);
+  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, options);
   for (const auto& w : p.warnings) std::cerr << "dss_check: warning: " << w << "\n";
   if (do_describe) {
     std::cout << describe(p).dump(2) << "\n";

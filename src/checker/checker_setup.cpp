@@ -92,6 +92,14 @@ std::vector<int> resolveGroup(const LoadedRobot& robot, std::string* group) {
 
 ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
                       const std::map<std::string, double>& start, double prune_margin) {
+  CollisionModelOptions options;
+  options.prune_margin = prune_margin;
+  return setupModel(robot, std::move(scene), std::move(group), start, options);
+}
+
+ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
+                      const std::map<std::string, double>& start,
+                      const CollisionModelOptions& options) {
   ModelSetup s;
   s.warnings = scene.warnings;  // the scene is consumed below; its warnings stay with the setup
   s.group_active = resolveGroup(robot, &group);
@@ -105,8 +113,6 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
     if (n != "virtual_joint")
       s.warnings.push_back("joint " + n +
                            " of the scene/request is not an active joint of the robot: ignored");
-  CollisionModelOptions options;
-  options.prune_margin = prune_margin;
   auto model = std::make_shared<CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr,
                                                 std::move(scene), s.group_active, s.held, options);
   for (const auto& w : model->warnings) s.warnings.push_back(w);

@@ -7,7 +7,15 @@ namespace dss {
 
 Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
                     const std::map<std::string, double>& start, double prune_margin) {
-  ModelSetup setup = setupModel(robot, std::move(scene), std::move(group), start, prune_margin);
+  CollisionModelOptions options;
+  options.prune_margin = prune_margin;
+  return makeProblem(robot, std::move(scene), std::move(group), start, options);
+}
+
+Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
+                    const std::map<std::string, double>& start,
+                    const CollisionModelOptions& options) {
+  ModelSetup setup = setupModel(robot, std::move(scene), std::move(group), start, options);
   Problem p;
   p.group = setup.group;
   p.warnings = std::move(setup.warnings);

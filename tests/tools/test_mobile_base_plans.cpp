@@ -46,6 +46,46 @@ BOOST_AUTO_TEST_CASE(the_mobile_base_plans_through_its_aisle) {
   }
 }
 
+// --base-table-cells: the mobile base's table against the aisle, by default and at a chosen
+// size, or none; the per-state answers of dss_check and the plan do not change.
+BOOST_AUTO_TEST_CASE(the_base_table_size_changes_no_answer) {
+  const std::string d = kRobots + "/dss_mobile_base";
+  std::vector<std::string> answers;
+  for (const char* cells : {"", "0", "5000"}) {
+    std::vector<std::string> args = {"--robot",     d + "/dss_mobile_base.urdf",
+                                     "--srdf",      d + "/dss_mobile_base.srdf",
+                                     "--scene",     d + "/scenes/aisle.yaml",
+                                     "--group",     "whole_body",
+                                     "--workspace", "0,-0.7,0,9,0.7,2",
+                                     "--random",    "3000",
+                                     "--checker",   "dss"};
+    if (*cells) args.insert(args.end(), {"--base-table-cells", cells});
+    const dss_test::ToolRun r = dss_test::runTool("dss_check", args);
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+    const bool table = r.err.find("base-scene table (") != std::string::npos;
+    BOOST_TEST(table == (std::string(cells) != "0"), cells << ": " << r.err);
+    answers.push_back(r.out);
+  }
+  BOOST_TEST(answers[0].size() > 3000u);
+  BOOST_TEST(answers[0] == answers[1]);
+  BOOST_TEST(answers[0] == answers[2]);
+  std::vector<std::string> plans;
+  for (const char* cells : {"0", "65536"}) {
+    std::vector<std::string> args = problem("dss_mobile_base", "aisle");
+    args.insert(args.end(), {"--base-table-cells", cells});
+    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+    plans.push_back(j.at("path_length").dump() + " " + j.at("validity_checks").dump());
+  }
+  BOOST_TEST(plans[0] == plans[1]);
+  const dss_test::ToolRun bad = dss_test::runTool(
+      "dss_check",
+      {"--robot", d + "/dss_mobile_base.urdf", "--random", "3", "--base-table-cells", "-1"});
+  BOOST_TEST(bad.exit_code == 2);
+  BOOST_TEST(bad.err.find("--base-table-cells") != std::string::npos, bad.err);
+}
+
 BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path) {
   const std::string csv = (dss_test::scratchDir("tools") / "flyer_path.csv").string();
   std::vector<std::string> args = problem("dss_free_flyer", "window");

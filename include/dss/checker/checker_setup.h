@@ -58,6 +58,10 @@ struct ModelSetup {
 /// at `start` (by name; falls back to the scene's robot state, then the default state).
 ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
                       const std::map<std::string, double>& start, double prune_margin = 0.0);
+/// The same with every option of the collision model (pruning margin, tables).
+ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
+                      const std::map<std::string, double>& start,
+                      const CollisionModelOptions& options);
 
 struct CheckerConfig {
   std::string checker = "dss";  ///< dss | fcl-hull | fcl-mesh

@@ -29,6 +29,10 @@ struct Problem {
 /// at `start` (by name; falls back to the scene's robot state, then the default state).
 Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
                     const std::map<std::string, double>& start, double prune_margin = 0.0);
+/// The same with every option of the collision model.
+Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
+                    const std::map<std::string, double>& start,
+                    const CollisionModelOptions& options);
 
 /// An OMPL validity checker on a state checker by name; throws std::invalid_argument for an
 /// unknown name.
