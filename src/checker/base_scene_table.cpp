@@ -138,6 +138,8 @@ BaseSceneTable::BaseSceneTable(const CollisionModel& model, std::size_t max_cell
   auto free = [&](const Tabled& t, const Eigen::Isometry3d& XL, const std::vector<int>& near) {
     const double move = t.move;
     const CollisionModel::Slot& slot = slots[std::size_t(t.slot)];
+    // The link's sphere first: one lookup for all its elements.
+    if (grid.clear(XL * slot.center_L, slot.radius + move + padding)) return true;
     for (int e = slot.first_element; e < slot.first_element + slot.num_elements; ++e) {
       const CollisionModel::Element& el = elements[std::size_t(e)];
       const Eigen::Vector3d ce = XL * el.center_L;
@@ -158,26 +160,38 @@ BaseSceneTable::BaseSceneTable(const CollisionModel& model, std::size_t max_cell
     }
     return true;
   };
+  // The inner boxes shrunk by V along the plane's directions: by V sqrt(1 - (a.n)^2) along a
+  // box axis a, the same at every theta (the turn is about n). An element is useful for the
+  // colliding test when its shrunk box or one of its shrunk balls is left.
+  std::vector<Eigen::Vector3d> inner_half(elements.size(), Eigen::Vector3d::Constant(-1.0));
+  std::vector<char> useful(elements.size(), 0);
+  for (const Tabled& t : tabled) {
+    const CollisionModel::Slot& slot = slots[std::size_t(t.slot)];
+    for (int e = slot.first_element; e < slot.first_element + slot.num_elements; ++e) {
+      const CollisionModel::Element& el = elements[std::size_t(e)];
+      const Eigen::Matrix3d R = (X[std::size_t(t.link)] * el.source->X_LS).linear();
+      if (el.has_inner_box)
+        for (int i = 0; i < 3; ++i) {
+          const double an = R.col(i).dot(n);
+          inner_half[std::size_t(e)][i] =
+              el.inner_box_h[i] - t.move * std::sqrt(std::max(0.0, 1.0 - an * an + 1e-12));
+        }
+      bool balls = false;
+      for (int b = 0; b < el.num_inner; ++b) balls = balls || el.inner_S[b].w() > t.move;
+      useful[std::size_t(e)] = inner_half[std::size_t(e)].minCoeff() > 0.0 || balls;
+    }
+  }
   // Some element of link k within the padding of an obstacle at every pose of the cell.
   auto colliding = [&](const Tabled& t, const Eigen::Isometry3d& XL, const std::vector<int>& near) {
     const double move = t.move;
     const CollisionModel::Slot& slot = slots[std::size_t(t.slot)];
     for (int e = slot.first_element; e < slot.first_element + slot.num_elements; ++e) {
       const CollisionModel::Element& el = elements[std::size_t(e)];
-      if (!el.has_inner_box && el.num_inner == 0) continue;
+      if (!useful[std::size_t(e)]) continue;
       const Eigen::Vector3d ce = XL * el.center_L;
       const double r = el.radius + padding;
       const Eigen::Isometry3d XS = XL * el.source->X_LS;
-      // The inner box shrunk by V along the plane's directions: its extent along axis a is
-      // V sqrt(1 - (a.n)^2).
-      Eigen::Vector3d hb = Eigen::Vector3d::Constant(-1.0);
-      if (el.has_inner_box) {
-        for (int i = 0; i < 3; ++i) {
-          const double an = XS.linear().col(i).dot(n);
-          const double shrink = move * std::sqrt(std::max(0.0, 1.0 - an * an + 1e-12));
-          hb[i] = el.inner_box_h[i] - shrink;
-        }
-      }
+      const Eigen::Vector3d& hb = inner_half[std::size_t(e)];
       const bool box_ok = hb.minCoeff() > 0.0;
       for (int o : near) {
         const Eigen::Vector3d& half = model.obstacleBoxHalf(o);
