@@ -13,6 +13,7 @@
 #include "dss/checker/dss_checker.h"
 #include "dss/core/any_shape_query.h"
 #include "dss/robot/multi_dof.h"
+#include "dss/robot/urdf_loader.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
@@ -71,41 +72,18 @@ std::vector<double> sample(const dss::CollisionModel& m, std::mt19937_64& rng) {
   return q;
 }
 
-}  // namespace
-
-BOOST_AUTO_TEST_SUITE(base_scene_table)
-
-BOOST_AUTO_TEST_CASE(built_for_the_planar_base_only) {
-  const Mobile mb = load("dss_mobile_base", "aisle");
-  const dss::BaseSceneTable& t = mb.with->baseTable();
-  BOOST_TEST_REQUIRE(!t.empty());
-  BOOST_TEST(mb.without->baseTable().empty());
-  // The base (and the mast fixed on it) are tabled; the lift and the arm move by other joints.
-  BOOST_TEST(t.slots().size() == 2u);
-  for (int s : t.slots())
-    BOOST_TEST((mb.with->robot().links[mb.with->slots()[s].link].name == "base_link" ||
-                mb.with->robot().links[mb.with->slots()[s].link].name == "mast_link"));
-  BOOST_TEST(t.numCells() <= 4u * dss::CollisionModelOptions().base_table_cells);
-  BOOST_TEST(t.cells(2) >= 8);
-  BOOST_TEST(t.numColliding() > t.numCells() / 20);
-  BOOST_TEST(t.numFree(0) > t.numCells() / 20);
-  BOOST_TEST(t.maxMove() > 0.0);
-  BOOST_TEST(t.maxMove() < 0.2);
-  // A floating base and a fixed arm get none.
-  BOOST_TEST(load("dss_free_flyer", "window").with->baseTable().empty());
-  BOOST_TEST(dss_test::shelfSetup(dss_test::loadArm()).model->baseTable().empty());
-}
-
-BOOST_AUTO_TEST_CASE(cells_agree_with_the_exact_decision) {
-  const Mobile mb = load("dss_mobile_base", "aisle");
-  const dss::CollisionModel& m = *mb.with;
+// Checks `n` states of `m` against exact DSS: a colliding cell holds a tabled link that
+// touches an obstacle, a link certified free touches none. Returns the states in colliding
+// cells and the links certified free.
+std::pair<std::size_t, std::size_t> checkCells(const dss::CollisionModel& m, int n,
+                                               std::uint64_t seed) {
   const dss::BaseSceneTable& t = m.baseTable();
   BOOST_TEST_REQUIRE(!t.empty());
   const auto& obstacles = m.scene().obstacles;
   std::vector<Eigen::Isometry3d> X(m.robot().links.size(), Eigen::Isometry3d::Identity());
-  std::mt19937_64 rng(41);
+  std::mt19937_64 rng(seed);
   std::size_t colliding = 0, free_links = 0;
-  for (int k = 0; k < 30000; ++k) {
+  for (int k = 0; k < n; ++k) {
     const std::vector<double> q = sample(m, rng);
     BOOST_TEST_REQUIRE(m.withinBounds(q.data()));
     const std::uint8_t cell = t.read(q.data());
@@ -141,8 +119,94 @@ BOOST_AUTO_TEST_CASE(cells_agree_with_the_exact_decision) {
   }
   BOOST_TEST_MESSAGE(colliding << " states in colliding cells, " << free_links
                                << " links certified free");
+  return {colliding, free_links};
+}
+
+// A body on a planar joint whose plane is tilted and moved (the joint's origin turned), with a
+// deck fixed on it and an arm on a revolute joint below (not tabled), among boxes turned every
+// way, a cylinder and a sphere.
+std::shared_ptr<const dss::CollisionModel> tiltedPlane(std::uint64_t seed) {
+  const std::string urdf = R"(<robot name="tilted"><link name="world"/>
+<link name="body"><collision><geometry><box size="0.5 0.3 0.12"/></geometry></collision>
+  <collision><origin xyz="0.25 0 0" rpy="1.5707963 0 0"/><geometry><cylinder radius="0.06" length="0.3"/></geometry></collision></link>
+<link name="deck"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.3 0.2 0.08"/></geometry></collision></link>
+<link name="arm"><collision><origin xyz="0.2 0 0"/><geometry><box size="0.4 0.05 0.05"/></geometry></collision></link>
+<joint name="base" type="planar"><parent link="world"/><child link="body"/>
+  <origin xyz="0.3 -0.2 0.1" rpy="1.1 -0.6 0.7"/></joint>
+<joint name="deck_mount" type="fixed"><parent link="body"/><child link="deck"/><origin xyz="-0.1 0 0.06"/></joint>
+<joint name="elbow" type="revolute"><parent link="body"/><child link="arm"/>
+  <origin xyz="0.25 0 0.1"/><axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>)";
+  auto robot = std::make_shared<dss::RobotModel>(dss::loadUrdfString(urdf, "tilted.urdf", "."));
+  dss::setMultiDofTranslationBounds(*robot, Eigen::Vector3d(-2, -1.5, 0),
+                                    Eigen::Vector3d(2, 1.5, 0));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  dss::Scene scene;
+  for (int k = 0; k < 24; ++k) {
+    dss::Obstacle o;
+    o.name = o.object_id = "o" + std::to_string(k);
+    if (k % 8 == 6)
+      o.shape = dss::Cylinder{0.1 + 0.1 * std::abs(u(rng)), 0.2 + 0.3 * std::abs(u(rng))};
+    else if (k % 8 == 7)
+      o.shape = dss::Sphere{0.1 + 0.15 * std::abs(u(rng))};
+    else
+      o.shape =
+          dss::Box{Eigen::Vector3d(0.05 + 0.4 * std::abs(u(rng)), 0.05 + 0.4 * std::abs(u(rng)),
+                                   0.05 + 0.2 * std::abs(u(rng)))};
+    o.X_WO.translation() = Eigen::Vector3d(2.2 * u(rng), 1.7 * u(rng), 0.4 * u(rng));
+    if (k % 2 == 1)  // every other one turned
+      o.X_WO.linear() =
+          Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    scene.obstacles.push_back(o);
+  }
+  std::vector<double> held(robot->numActiveJoints(), 0.0);
+  return std::make_shared<const dss::CollisionModel>(robot, nullptr, scene, std::vector<int>{},
+                                                     held);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(base_scene_table)
+
+BOOST_AUTO_TEST_CASE(cells_agree_with_the_exact_decision) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  const auto [colliding, free_links] = checkCells(*mb.with, 30000, 41);
   BOOST_TEST(colliding > 3000u);
   BOOST_TEST(free_links > 3000u);
+}
+
+// The same on a tilted plane among turned boxes, cylinders and spheres: the plane's normal,
+// the slides' directions and the shrink of the inner boxes come from the joint's frame.
+BOOST_AUTO_TEST_CASE(cells_agree_with_the_exact_decision_on_a_tilted_plane) {
+  for (std::uint64_t seed : {5u, 6u, 7u}) {
+    const auto m = tiltedPlane(seed);
+    BOOST_TEST_REQUIRE(m->baseTable().slots().size() == 2u);  // body and deck, not the arm
+    const auto [colliding, free_links] = checkCells(*m, 8000, seed + 100);
+    BOOST_TEST(colliding > 200u);
+    BOOST_TEST(free_links > 1000u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(built_for_the_planar_base_only) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  const dss::BaseSceneTable& t = mb.with->baseTable();
+  BOOST_TEST_REQUIRE(!t.empty());
+  BOOST_TEST(mb.without->baseTable().empty());
+  // The base (and the mast fixed on it) are tabled; the lift and the arm move by other joints.
+  BOOST_TEST(t.slots().size() == 2u);
+  for (int s : t.slots())
+    BOOST_TEST((mb.with->robot().links[mb.with->slots()[s].link].name == "base_link" ||
+                mb.with->robot().links[mb.with->slots()[s].link].name == "mast_link"));
+  BOOST_TEST(t.numCells() <= 4u * dss::CollisionModelOptions().base_table_cells);
+  BOOST_TEST(t.cells(2) >= 8);
+  BOOST_TEST(t.numColliding() > t.numCells() / 20);
+  BOOST_TEST(t.numFree(0) > t.numCells() / 20);
+  BOOST_TEST(t.maxMove() > 0.0);
+  BOOST_TEST(t.maxMove() < 0.2);
+  // A floating base and a fixed arm get none.
+  BOOST_TEST(load("dss_free_flyer", "window").with->baseTable().empty());
+  BOOST_TEST(dss_test::shelfSetup(dss_test::loadArm()).model->baseTable().empty());
 }
 
 BOOST_AUTO_TEST_CASE(answers_match_without_the_table) {
