@@ -69,16 +69,19 @@ BOOST_AUTO_TEST_CASE(the_base_table_size_changes_no_answer) {
   BOOST_TEST(answers[0].size() > 3000u);
   BOOST_TEST(answers[0] == answers[1]);
   BOOST_TEST(answers[0] == answers[2]);
-  std::vector<std::string> plans;
-  for (const char* cells : {"0", "65536"}) {
-    std::vector<std::string> args = problem("dss_mobile_base", "aisle");
-    args.insert(args.end(), {"--base-table-cells", cells});
-    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
-    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
-    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
-    plans.push_back(j.at("path_length").dump() + " " + j.at("validity_checks").dump());
+  // Discrete and continuous motions (the continuous check's midpoint states use the table).
+  for (const char* motion : {"discrete", "continuous"}) {
+    std::vector<std::string> plans;
+    for (const char* cells : {"0", "65536"}) {
+      std::vector<std::string> args = problem("dss_mobile_base", "aisle");
+      args.insert(args.end(), {"--base-table-cells", cells, "--motion", motion});
+      const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+      BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+      const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+      plans.push_back(j.at("path_length").dump() + " " + j.at("validity_checks").dump());
+    }
+    BOOST_TEST(plans[0] == plans[1], motion);
   }
-  BOOST_TEST(plans[0] == plans[1]);
   const dss_test::ToolRun bad = dss_test::runTool(
       "dss_check",
       {"--robot", d + "/dss_mobile_base.urdf", "--random", "3", "--base-table-cells", "-1"});

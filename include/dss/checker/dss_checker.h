@@ -1,7 +1,8 @@
 // The DSS state checker: the model's sweep with the exact DSS decision as its narrow phase.
 //
-// check(q): bounds first (non-finite or out-of-bounds values are invalid), then the self-pair
-// tables (a pair certified colliding needs no pose), then forward kinematics -- of the pose
+// check(q): bounds first (non-finite or out-of-bounds values are invalid), then a planar
+// base's table against the scene (base_scene_table.h) and the self-pair tables (a cell
+// certified colliding needs no pose), then forward kinematics -- of the pose
 // links alone when the held joints are at their held values -- into per-thread scratch, then
 // the sweep, stopping at the first collision. DSS answers at the iteration cap count as
 // collisions (and are counted).
@@ -54,6 +55,10 @@ class DssChecker : public StateChecker {
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
+  /// The base-scene table's cell for state q (within the model's bounds) as this checker may
+  /// use it: kColliding when its scene padding is at least the table's, else the links
+  /// certified free when its scene padding is at most the table's, else 0.
+  std::uint8_t baseCell(const double* q) const;
   /// `base_free`: the base-scene table's bits for the state (none by default).
   bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,
                   double scene_padding, double self_padding, std::uint8_t base_free = 0) const;
