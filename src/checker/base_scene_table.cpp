@@ -262,4 +262,39 @@ BaseSceneTable::BaseSceneTable(const CollisionModel& model, std::size_t max_cell
   for (const Tabled& t : tabled) slots_.push_back(t.slot);
 }
 
+std::uint8_t BaseSceneTable::freeAlong(const double* qa, const double* qb, int max_cells) const {
+  if (cells_.empty()) return 0;
+  // x and y: the cells between the ends' cells (the index is monotone in the value).
+  int lo[3], hi[3];
+  for (int k = 0; k < 2; ++k) {
+    const int a = index(qa[var_[k]], k), b = index(qb[var_[k]], k);
+    lo[k] = std::min(a, b), hi[k] = std::max(a, b);
+  }
+  // theta: the cells of [min, max] unwrapped (floor of the same monotone map), taken modulo
+  // the turn; all of them when it spans a whole turn.
+  const double ta = qa[var_[2]], tb = qb[var_[2]];
+  const double t0 = std::min(ta, tb), t1 = std::max(ta, tb);
+  if (!(t0 >= -1e5 && t1 <= 1e5)) return 0;  // (the kinematics' trig is exact within 1e5)
+  const double f0 = std::floor((t0 - lo_[2]) * inv_width_[2]);
+  const double f1 = std::floor((t1 - lo_[2]) * inv_width_[2]);
+  const bool whole = f1 - f0 + 1.0 >= double(n_[2]);
+  lo[2] = whole ? 0 : int(f0), hi[2] = whole ? n_[2] - 1 : int(f1);
+  const double count =
+      double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
+  if (count > double(max_cells)) return 0;
+  std::uint8_t bits = 0x7f;
+  for (int it = lo[2]; it <= hi[2]; ++it) {
+    const int t = ((it % n_[2]) + n_[2]) % n_[2];
+    for (int iy = lo[1]; iy <= hi[1]; ++iy)
+      for (int ix = lo[0]; ix <= hi[0]; ++ix) {
+        const std::uint8_t cell =
+            cells_[(std::size_t(t) * std::size_t(n_[1]) + std::size_t(iy)) * std::size_t(n_[0]) +
+                   std::size_t(ix)];
+        if (cell == kColliding) return 0;
+        bits &= cell;
+      }
+  }
+  return bits;
+}
+
 }  // namespace dss

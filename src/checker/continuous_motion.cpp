@@ -387,7 +387,8 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     const Eigen::Isometry3d* XB = sc.pool.data() + std::size_t(iv.pb) * nl;
     jointTravel(qa, qb, n, sc.turning, sc.travel.data());
     ++sc.stamp;  // every element's sweep and every slot's padding is stale
-    bool tables_read = false;
+    bool tables_read = false, base_read = false;
+    std::uint8_t base_along = 0;
     const bool may_defer = iv.tb - iv.ta > min_fraction_;
     for (std::size_t w = iv.begin; w < iv.end; ++w) {
       const int u = sc.work[w];
@@ -398,6 +399,17 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
           tables_read = true;
         }
         if (sc.free_along[std::size_t(unit.table)]) continue;  // certified over [ta, tb]
+      }
+      // A planar base's link certified free in every table cell the sub-motion crosses.
+      if (!unit.self && m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit) {
+        if (!base_read) {
+          base_along = checker_->settings().scene_padding <= m.baseTable().padding()
+                           ? m.baseTable().freeAlong(qa, qb)
+                           : 0;
+          base_read = true;
+        }
+        if (base_along & m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit)
+          continue;
       }
       if (unitClear(unit, XA, XB, may_defer, &tests)) continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the

@@ -10,6 +10,7 @@
 
 #include "dss/checker/base_scene_table.h"
 #include "dss/checker/checker_setup.h"
+#include "dss/checker/continuous_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/core/any_shape_query.h"
 #include "dss/robot/multi_dof.h"
@@ -244,6 +245,39 @@ BOOST_AUTO_TEST_CASE(answers_match_without_the_table) {
       BOOST_TEST((with.check(x.data()) == dss::StateVerdict::kInvalidInput));
     }
   }
+}
+
+// The continuous check clears a base link's units over a sub-motion whose table cells are
+// all free for it: the same answers and last valid fractions as without the table, on short
+// and long random motions (theta crossing +-pi among them), with fewer swept tests.
+BOOST_AUTO_TEST_CASE(continuous_answers_match_without_the_table) {
+  const Mobile mb = load("dss_mobile_base", "aisle");
+  const dss::ContinuousMotionChecker with(std::make_shared<const dss::DssChecker>(mb.with)),
+      without(std::make_shared<const dss::DssChecker>(mb.without));
+  const auto v = planarVars(mb.with->robot());
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int valid = 0, invalid = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const std::vector<double> q0 = sample(*mb.with, rng);
+    std::vector<double> q1 = sample(*mb.with, rng);
+    const double f = k % 3 == 0 ? 1.0 : 0.05;  // long, or short
+    for (std::size_t i = 0; i < q0.size(); ++i) q1[i] = q0[i] + f * (q1[i] - q0[i]);
+    if (k % 5 == 0) q1[v[2]] = q0[v[2]] + (u(rng) - 0.5);  // a turn, sometimes across +-pi
+    if (with.checker().collides(q0.data())) continue;
+    double la = -1, lb = -1;
+    const bool a = with.clear(q0.data(), q1.data(), &la);
+    const bool b = without.clear(q0.data(), q1.data(), &lb);
+    BOOST_TEST_REQUIRE(a == b, "motion " << k);
+    BOOST_TEST_REQUIRE(la == lb, "motion " << k);
+    (a ? valid : invalid)++;
+  }
+  BOOST_TEST_MESSAGE(valid << " motions clear, " << invalid << " not; swept tests "
+                           << with.unitTests() << " with the table, " << without.unitTests()
+                           << " without");
+  BOOST_TEST(valid > 100);
+  BOOST_TEST(invalid > 100);
+  BOOST_TEST(with.unitTests() < without.unitTests());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

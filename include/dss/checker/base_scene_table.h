@@ -67,6 +67,12 @@ class BaseSceneTable {
                   std::size_t(ix)];
   }
 
+  /// The bits of the tabled links certified free in every cell that the straight motion
+  /// qa -> qb (states within the model's bounds; x, y and theta each moving linearly) can
+  /// cross: those of the box of cells between its ends, when it has at most `max_cells`
+  /// cells; 0 otherwise, or when a colliding cell is among them.
+  std::uint8_t freeAlong(const double* qa, const double* qb, int max_cells = 64) const;
+
  private:
   static constexpr double kPi = 3.14159265358979323846;
   int index(double v, int axis) const {
