@@ -5,17 +5,9 @@
 
 namespace dss {
 
-Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
-                    const std::map<std::string, double>& start, double prune_margin) {
-  CollisionModelOptions options;
-  options.prune_margin = prune_margin;
-  return makeProblem(robot, std::move(scene), std::move(group), start, options);
-}
-
-Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
-                    const std::map<std::string, double>& start,
-                    const CollisionModelOptions& options) {
-  ModelSetup setup = setupModel(robot, std::move(scene), std::move(group), start, options);
+namespace {
+// The problem around a model set up for it.
+Problem fromSetup(const LoadedRobot& robot, ModelSetup setup) {
   Problem p;
   p.group = setup.group;
   p.warnings = std::move(setup.warnings);
@@ -25,6 +17,19 @@ Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
   p.model = std::move(setup.model);
   p.si = std::make_shared<ompl::base::SpaceInformation>(map->space());
   return p;
+}
+}  // namespace
+
+Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
+                    const std::map<std::string, double>& start, double prune_margin) {
+  return fromSetup(robot,
+                   setupModel(robot, std::move(scene), std::move(group), start, prune_margin));
+}
+
+Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
+                    const std::map<std::string, double>& start,
+                    const CollisionModelOptions& options) {
+  return fromSetup(robot, setupModel(robot, std::move(scene), std::move(group), start, options));
 }
 
 std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& p,
