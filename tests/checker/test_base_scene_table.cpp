@@ -248,8 +248,9 @@ BOOST_AUTO_TEST_CASE(answers_match_without_the_table) {
 }
 
 // The continuous check clears a base link's units over a sub-motion whose table cells are
-// all free for it: the same answers and last valid fractions as without the table, on short
-// and long random motions (theta crossing +-pi among them), with fewer swept tests.
+// all free for it. The table can only clear what the swept tests could not (never a
+// collision): on these short and long random motions (theta crossing +-pi among them) the
+// answers and last valid fractions are those without the table, with fewer swept tests.
 BOOST_AUTO_TEST_CASE(continuous_answers_match_without_the_table) {
   const Mobile mb = load("dss_mobile_base", "aisle");
   const dss::ContinuousMotionChecker with(std::make_shared<const dss::DssChecker>(mb.with)),

@@ -17,8 +17,10 @@
 //    cell holds that shrunk box inside the element's inner box, so the element touches the
 //    obstacle. Inner balls likewise, shrunk by V.
 // At query time a colliding cell answers the state before any kinematics, and a link certified
-// free skips its robot-scene stages. The table never changes an answer, only its cost (a pair
-// that would reach the iteration cap is the one exception: the table answers it correctly).
+// free skips its robot-scene stages. The table never changes a state's answer, only its cost
+// (a pair that would reach the iteration cap is the one exception: the table answers it
+// correctly). In the continuous check it clears a link over a sub-motion whose cells are all
+// free for it (freeAlong), which can only remove false alarms, never miss a collision.
 #pragma once
 
 #include <cmath>
