@@ -262,8 +262,9 @@ BaseSceneTable::BaseSceneTable(const CollisionModel& model, std::size_t max_cell
   for (const Tabled& t : tabled) slots_.push_back(t.slot);
 }
 
-std::uint8_t BaseSceneTable::freeAlong(const double* qa, const double* qb, int max_cells) const {
-  if (cells_.empty()) return 0;
+std::uint8_t BaseSceneTable::freeAlong(const double* qa, const double* qb, double scene_padding,
+                                       int max_cells) const {
+  if (cells_.empty() || !(scene_padding <= padding_)) return 0;
   // x and y: the cells between the ends' cells (the index is monotone in the value).
   int lo[3], hi[3];
   for (int k = 0; k < 2; ++k) {

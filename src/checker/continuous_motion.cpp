@@ -401,15 +401,14 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         if (sc.free_along[std::size_t(unit.table)]) continue;  // certified over [ta, tb]
       }
       // A planar base's link certified free in every table cell the sub-motion crosses.
-      if (!unit.self && m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit) {
+      const std::uint8_t base_bit =
+          unit.self ? 0 : m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit;
+      if (base_bit) {
         if (!base_read) {
-          base_along = checker_->settings().scene_padding <= m.baseTable().padding()
-                           ? m.baseTable().freeAlong(qa, qb)
-                           : 0;
+          base_along = m.baseTable().freeAlong(qa, qb, checker_->settings().scene_padding);
           base_read = true;
         }
-        if (base_along & m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit)
-          continue;
+        if (base_along & base_bit) continue;
       }
       if (unitClear(unit, XA, XB, may_defer, &tests)) continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the

@@ -36,7 +36,7 @@ bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) cons
   s.reserve(m);
   // A planar base's table: a colliding cell answers before any kinematics; links certified
   // free there skip their robot-scene stages.
-  const std::uint8_t base_free = baseCell(q);
+  const std::uint8_t base_free = m.baseTable().read(q, settings_.scene_padding);
   if (base_free == BaseSceneTable::kColliding) return true;
   const bool held = m.heldMatch(q);
   if (m.selfTables().read(q, held, settings_.self_padding, s.skip.data())) return true;
@@ -44,15 +44,6 @@ bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) cons
   (held ? m.sweepKinematics() : m.kinematics()).computeLinkPoses(q, s.X_WL.data());
   return collidesAt(s.X_WL.data(), held, s.skip.data(), settings_.scene_padding,
                     settings_.self_padding, base_free);
-}
-
-std::uint8_t DssChecker::baseCell(const double* q) const {
-  const BaseSceneTable& bt = model().baseTable();
-  if (bt.empty()) return 0;
-  const std::uint8_t cell = bt.read(q);
-  if (cell == BaseSceneTable::kColliding)
-    return settings_.scene_padding >= bt.padding() ? cell : std::uint8_t(0);
-  return settings_.scene_padding <= bt.padding() ? cell : std::uint8_t(0);
 }
 
 bool DssChecker::collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links,
@@ -101,7 +92,7 @@ bool DssChecker::collidesWithPoses(const double* q, const Eigen::Isometry3d* X_W
   }
   Scratch& s = scratch();
   s.reserve(m);
-  const std::uint8_t base_free = baseCell(q);
+  const std::uint8_t base_free = m.baseTable().read(q, settings_.scene_padding);
   if (base_free == BaseSceneTable::kColliding ||
       m.selfTables().read(q, m.heldMatch(q), settings_.self_padding, s.skip.data()) ||
       collidesAt(X_WL, false, s.skip.data(), settings_.scene_padding, settings_.self_padding,

@@ -69,11 +69,22 @@ class BaseSceneTable {
                   std::size_t(ix)];
   }
 
-  /// The bits of the tabled links certified free in every cell that the straight motion
-  /// qa -> qb (states within the model's bounds; x, y and theta each moving linearly) can
-  /// cross: those of the box of cells between its ends, when it has at most `max_cells`
-  /// cells; 0 otherwise, or when a colliding cell is among them.
-  std::uint8_t freeAlong(const double* qa, const double* qb, int max_cells = 64) const;
+  /// read(q) as a check at scene padding `scene_padding` may use it: kColliding when that
+  /// padding is at least padding(), the free bits when it is at most padding(), else 0.
+  std::uint8_t read(const double* q, double scene_padding) const {
+    if (cells_.empty()) return 0;
+    const std::uint8_t cell = read(q);
+    if (cell == kColliding) return scene_padding >= padding_ ? cell : std::uint8_t(0);
+    return scene_padding <= padding_ ? cell : std::uint8_t(0);
+  }
+
+  /// The bits of the tabled links certified free, at scene padding `scene_padding` (0 when it
+  /// exceeds padding()), in every cell that the straight motion qa -> qb (states within the
+  /// model's bounds; x, y and theta each moving linearly) can cross: those of the box of
+  /// cells between its ends, when it has at most `max_cells` cells; 0 otherwise, or when a
+  /// colliding cell is among them.
+  std::uint8_t freeAlong(const double* qa, const double* qb, double scene_padding,
+                         int max_cells = 64) const;
 
  private:
   static constexpr double kPi = 3.14159265358979323846;

@@ -55,10 +55,6 @@ class DssChecker : public StateChecker {
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
-  /// The base-scene table's cell for state q (within the model's bounds) as this checker may
-  /// use it: kColliding when its scene padding is at least the table's, else the links
-  /// certified free when its scene padding is at most the table's, else 0.
-  std::uint8_t baseCell(const double* q) const;
   /// `base_free`: the base-scene table's bits for the state (none by default).
   bool collidesAt(const Eigen::Isometry3d* X_WL, bool pose_links, const unsigned char* skip,
                   double scene_padding, double self_padding, std::uint8_t base_free = 0) const;
