@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace dss {
 
@@ -27,6 +28,8 @@ class Measure {
     }
     return b2;
   }
+  /// Whether obstacle k's oriented box can raise its world box's distance.
+  bool turned(std::size_t k) const { return reach_ >= 0.0 && !obbs_[k].axis_aligned; }
   double rounding(const Eigen::Vector3d& c) const {
     return reach_ < 0.0 ? 0.0 : 1e-9 * (3.0 * c.cwiseAbs().maxCoeff() + reach_) + 1e-12;
   }
@@ -35,6 +38,72 @@ class Measure {
   const std::vector<Obb>& obbs_;
   double reach_ = -1.0;  // negative: no turned obstacle
 };
+// One row of voxel centres cx[0 .. n) against one box: d2[x] = min(d2[x], the squared distance
+// to the world box (lx, ux along x; dy2 + dz2 from the other axes)). Two voxels at a time with
+// SSE2; max and min as the scalar tail forms them (b < a ? a : b is max(a, b) for these
+// finite values, and a NaN distance leaves d2 as it is).
+void rowAligned(const double* cx, double* d2, int n, double lx, double ux, double dy2, double dz2) {
+  int x = 0;
+#if defined(__SSE2__)
+  const __m128d vlx = _mm_set1_pd(lx), vux = _mm_set1_pd(ux), vdy2 = _mm_set1_pd(dy2),
+                vdz2 = _mm_set1_pd(dz2), zero = _mm_setzero_pd();
+  for (; x + 2 <= n; x += 2) {
+    const __m128d c = _mm_loadu_pd(cx + x);
+    const __m128d dx = _mm_max_pd(_mm_max_pd(_mm_sub_pd(vlx, c), _mm_sub_pd(c, vux)), zero);
+    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), vdy2), vdz2);
+    _mm_storeu_pd(d2 + x, _mm_min_pd(b2, _mm_loadu_pd(d2 + x)));
+  }
+#endif
+  for (; x < n; ++x) {
+    const double dx = std::max(std::max(lx - cx[x], cx[x] - ux), 0.0);
+    const double b2 = (dx * dx + dy2) + dz2;
+    d2[x] = b2 < d2[x] ? b2 : d2[x];
+  }
+}
+
+// The same for a turned box: the larger of the world box's and the oriented box's squared
+// distances, the oriented box's frame coordinates t_a = rx[a] (cx + px0) + ryz[a].
+void rowTurned(const double* cx, double* d2, int n, double lx, double ux, double dy2, double dz2,
+               double px0, const double* rx, const double* ryz, const Eigen::Vector3d& h) {
+  int x = 0;
+#if defined(__SSE2__)
+  const __m128d vlx = _mm_set1_pd(lx), vux = _mm_set1_pd(ux), vdy2 = _mm_set1_pd(dy2),
+                vdz2 = _mm_set1_pd(dz2), zero = _mm_setzero_pd(), vpx0 = _mm_set1_pd(px0),
+                sign = _mm_set1_pd(-0.0);
+  __m128d vrx[3], vryz[3], vh[3];
+  for (int a = 0; a < 3; ++a) {
+    vrx[a] = _mm_set1_pd(rx[a]);
+    vryz[a] = _mm_set1_pd(ryz[a]);
+    vh[a] = _mm_set1_pd(h[a]);
+  }
+  for (; x + 2 <= n; x += 2) {
+    const __m128d c = _mm_loadu_pd(cx + x);
+    const __m128d dx = _mm_max_pd(_mm_max_pd(_mm_sub_pd(vlx, c), _mm_sub_pd(c, vux)), zero);
+    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), vdy2), vdz2);
+    const __m128d px = _mm_add_pd(c, vpx0);
+    __m128d o[3];
+    for (int a = 0; a < 3; ++a) {
+      const __m128d t = _mm_add_pd(_mm_mul_pd(vrx[a], px), vryz[a]);
+      o[a] = _mm_max_pd(_mm_sub_pd(_mm_andnot_pd(sign, t), vh[a]), zero);
+    }
+    const __m128d ob2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(o[0], o[0]), _mm_mul_pd(o[1], o[1])),
+                                   _mm_mul_pd(o[2], o[2]));
+    // max(ob2, b2) gives b2 when ob2 is NaN; min(v, d2) keeps d2 when v is NaN.
+    _mm_storeu_pd(d2 + x, _mm_min_pd(_mm_max_pd(ob2, b2), _mm_loadu_pd(d2 + x)));
+  }
+#endif
+  for (; x < n; ++x) {
+    const double dx = std::max(std::max(lx - cx[x], cx[x] - ux), 0.0);
+    const double b2 = (dx * dx + dy2) + dz2;
+    const double px = cx[x] + px0;
+    const double o0 = std::max(std::abs(rx[0] * px + ryz[0]) - h.x(), 0.0);
+    const double o1 = std::max(std::abs(rx[1] * px + ryz[1]) - h.y(), 0.0);
+    const double o2 = std::max(std::abs(rx[2] * px + ryz[2]) - h.z(), 0.0);
+    const double ob2 = (o0 * o0 + o1 * o1) + o2 * o2;
+    const double v = ob2 > b2 ? ob2 : b2;
+    d2[x] = v < d2[x] ? v : d2[x];
+  }
+}
 }  // namespace
 
 ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
@@ -69,25 +138,59 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   // with that of the oriented-box distances.
   const double half_diagonal = 0.5 * std::sqrt(3.0) * size;
   const Measure measure(obbs);
+  // Row by row along x: each box's squared distance to the row's voxel centres in one pass
+  // (the x part per voxel, the y and z parts once per row). A box whose distance to the row's
+  // line already exceeds what a byte can hold (plus the half diagonal and every margin) cannot
+  // lower any voxel of the row below the largest value, and is skipped.
+  auto marginAt = [&](const Eigen::Vector3d& c) {
+    return 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal) + measure.rounding(c);
+  };
+  std::vector<double> cx(static_cast<std::size_t>(n[0])), d2(static_cast<std::size_t>(n[0]));
+  for (int x = 0; x < n[0]; ++x) cx[x] = origin_.x() + size * (x + 0.5);
+  const double cx_max = std::max(std::abs(cx.front()), std::abs(cx.back()));
   std::size_t i = 0;
-  for (int z = 0; z < n[2]; ++z)
-    for (int y = 0; y < n[1]; ++y)
-      for (int x = 0; x < n[0]; ++x, ++i) {
-        const Eigen::Vector3d c = origin_ + size * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-        // The nearest obstacle; a world box no nearer than the best so far cannot lower it, and
-        // its oriented box is not needed.
-        double d2 = std::numeric_limits<double>::infinity();
-        for (std::size_t k = 0; k < boxes.size(); ++k) {
-          const double b2 = detail::sqDistPointAabb(c, boxes[k]);
-          if (!(b2 < d2)) continue;
-          d2 = std::min(d2, measure.sqDistance(c, k, b2));
+  for (int z = 0; z < n[2]; ++z) {
+    const double cz = origin_.z() + size * (z + 0.5);
+    for (int y = 0; y < n[1]; ++y, i += static_cast<std::size_t>(n[0])) {
+      const double cy = origin_.y() + size * (y + 0.5);
+      // The margins grow with |c|: the row's largest, at its farthest centre.
+      const double saturated =
+          256.0 * kQuantum + half_diagonal + 2.0 * marginAt(Eigen::Vector3d(cx_max, cy, cz));
+      const double skip2 = saturated * saturated;
+      std::fill(d2.begin(), d2.end(), std::numeric_limits<double>::infinity());
+      for (std::size_t k = 0; k < boxes.size(); ++k) {
+        const Aabb& b = boxes[k];
+        const double dy = std::max(std::max(b.lower.y() - cy, cy - b.upper.y()), 0.0);
+        const double dz = std::max(std::max(b.lower.z() - cz, cz - b.upper.z()), 0.0);
+        const double dy2 = dy * dy, dz2 = dz * dz;
+        if (dy2 + dz2 > skip2) continue;
+        const double lx = b.lower.x(), ux = b.upper.x();
+        if (measure.turned(k)) {
+          // The larger of the distances to the world box and to the oriented box (a NaN of the
+          // latter leaves the former). The oriented box's frame coordinates t_a = R(0, a) px +
+          // (R(1, a) py + R(2, a) pz): only px varies along the row. Their rounding is far
+          // below Measure::rounding's bound.
+          const Obb& ob = obbs[k];
+          const double py = cy - ob.c.y(), pz = cz - ob.c.z();
+          double ryz[3], rx[3];
+          for (int a = 0; a < 3; ++a) {
+            ryz[a] = ob.R(1, a) * py + ob.R(2, a) * pz;
+            rx[a] = ob.R(0, a);
+          }
+          rowTurned(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2, -ob.c.x(), rx, ryz, ob.h);
+        } else {
+          rowAligned(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2);
         }
-        const double margin =
-            1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal) + measure.rounding(c);
-        const double lower = std::sqrt(d2) - half_diagonal - margin;
-        if (!(lower > 0.0)) continue;  // also NaN
-        bound_[i] = static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
       }
+      for (int x = 0; x < n[0]; ++x) {
+        const double lower =
+            std::sqrt(d2[x]) - half_diagonal - marginAt(Eigen::Vector3d(cx[x], cy, cz));
+        if (!(lower > 0.0)) continue;  // also NaN
+        bound_[i + static_cast<std::size_t>(x)] =
+            static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
+      }
+    }
+  }
 }
 
 void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radius,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "dss/checker/element_bounds.h"
+#include "dss/checker/element_shapes_cache.h"
 #include "dss/checker/inner_shapes.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/pose_links.h"
@@ -149,9 +150,15 @@ void CollisionModel::buildBounds() {
 
 void CollisionModel::buildSlots() {
   const RobotModel& m = *robot_;
+  // The elements' own bounds, computed once per robot (element_shapes_cache.h).
+  const std::shared_ptr<const std::vector<ElementShapes>> shapes = cachedElementShapes(robot_);
+  std::size_t next_shape = 0;
   for (std::size_t l = 0; l < m.links.size(); ++l) {
     const RobotLink& link = m.links[l];
-    if (!link.hasGeometry()) continue;
+    if (!link.hasGeometry()) {
+      next_shape += link.collisions.size();
+      continue;
+    }
     Slot s;
     s.link = int(l);
     s.moves = moves_[l];
@@ -160,22 +167,22 @@ void CollisionModel::buildSlots() {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d hi = -lo;
     for (const auto& ce : link.collisions) {
+      const ElementShapes& es = shapes->at(next_shape++);
       Element e;
       e.link = int(l);
       e.slot = int(slots_.size());
       e.source = &ce;
-      elementSphere(ce.shape, ce.X_LS, &e.center_L, &e.radius);
-      localBox(ce.shape, &e.box_center_S, &e.box_half);
+      e.center_L = es.center_L;
+      e.radius = es.radius;
+      e.box_center_S = es.box_center_S;
+      e.box_half = es.box_half;
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
-      e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, Element::kMaxInner);
-      // The box only where it holds more than the balls (flat and boxy elements): on rounded
-      // links it would be small and cost a test whenever a pair reaches the inner stage.
-      double balls_volume = 0.0;
-      for (int b = 0; b < e.num_inner; ++b)
-        balls_volume += 4.18879020478639 * std::pow(e.inner_S[b].w(), 3);  // 4/3 pi r^3
-      e.has_inner_box =
-          innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h) &&
-          8.0 * e.inner_box_h.prod() >= balls_volume;
+      static_assert(Element::kMaxInner == ElementShapes::kMaxInner, "inner balls");
+      e.num_inner = es.num_inner;
+      for (int b = 0; b < es.num_inner; ++b) e.inner_S[b] = es.inner_S[b];
+      e.has_inner_box = es.has_inner_box;
+      e.inner_box_c = es.inner_box_c;
+      e.inner_box_h = es.inner_box_h;
       if (e.has_inner_box && e.inner_box_c != e.box_center_S)
         throw std::logic_error("CollisionModel: the inner box of link " + link.name +
                                " is not centred on its local box");

@@ -307,4 +307,64 @@ BOOST_AUTO_TEST_CASE(ball_apart_from_a_turned_box_at_the_boundary) {
   BOOST_TEST(!dss::ballApartObb(t.obb.c, 0.0, t.obb));  // inside
 }
 
+// Every voxel holds the distance from its centre to the nearest obstacle less half the voxel's
+// diagonal, rounded down to the quantum (at most one quantum lower, for the rounding margin),
+// up to the largest byte: also in a scene wider than a byte's reach, where rows of voxels far
+// from a box skip it, and with turned boxes among axis-aligned ones.
+BOOST_AUTO_TEST_CASE(every_voxel_holds_the_distance_at_its_centre_to_the_quantum) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 0.3);
+  const double q = dss::ClearanceGrid::kQuantum;
+  for (int trial = 0; trial < 8; ++trial) {
+    const double spread = trial < 4 ? 1.0 : 6.0;  // 6: most rows are beyond a byte of a box
+    std::vector<dss::Aabb> boxes;
+    std::vector<dss::Obb> obbs;
+    for (int k = 0; k < 2 + trial; ++k) {
+      if (trial % 2) {
+        TurnedBox t = turnedBox(rng, k % 2 == 0);
+        const Eigen::Vector3d shift(spread * u(rng), spread * u(rng), spread * u(rng));
+        t.aabb.lower += shift;
+        t.aabb.upper += shift;
+        t.obb.c += shift;
+        boxes.push_back(t.aabb);
+        obbs.push_back(t.obb);
+      } else {
+        const Eigen::Vector3d c(spread * u(rng), spread * u(rng), spread * u(rng)),
+            h(e(rng), e(rng), e(rng));
+        boxes.push_back(dss::Aabb{c - h, c + h});
+      }
+    }
+    dss::Aabb region;
+    region.lower = Eigen::Vector3d::Constant(-1.1 * spread);
+    region.upper = Eigen::Vector3d(1.2, 1.0, 1.1) * spread;
+    const dss::ClearanceGrid grid(region, boxes, obbs, 32768);
+    const double size = grid.voxelSize(), half_diagonal = 0.5 * std::sqrt(3.0) * size;
+    std::size_t visited = 0;
+    int saturated = 0, positive = 0;
+    const Eigen::Vector3d o = grid.origin();
+    for (double z = o.z() + 0.5 * size; z < region.upper.z() + 0.5 * size; z += size)
+      for (double y = o.y() + 0.5 * size; y < region.upper.y() + 0.5 * size; y += size)
+        for (double x = o.x() + 0.5 * size; x < region.upper.x() + 0.5 * size; x += size) {
+          const Eigen::Vector3d c(x, y, z);
+          double d = std::numeric_limits<double>::infinity();
+          for (std::size_t k = 0; k < boxes.size(); ++k)
+            d = std::min(d, obbs.empty() ? std::sqrt(dss::detail::sqDistPointAabb(c, boxes[k]))
+                                         : distanceTo(c, obbs[k]));
+          const double expected =
+              std::max(0.0, std::min(255.0, std::floor((d - half_diagonal) / q)));
+          const double got = grid.bound(c) / q;
+          ++visited;
+          saturated += got == 255.0;
+          positive += got > 0.0;
+          BOOST_TEST_REQUIRE(
+              (got == expected || got == expected - 1.0 || (expected == 0.0 && got == 0.0)),
+              "trial " << trial << " voxel at " << c.transpose() << ": " << got
+                       << " quanta, expected " << expected);
+        }
+    BOOST_TEST(visited == grid.voxels());
+    BOOST_TEST(positive > 0);
+    if (spread > 1.0) BOOST_TEST(saturated > 0);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,42 @@
+// The bounds of a robot's collision elements that depend on the element alone -- its bounding
+// sphere in the link frame, its local box, its inner balls and inner box -- computed once per
+// robot for every collision model built from it (a folder of MotionBenchMaker problems, a
+// planning scene that changes between requests). Finding the inner shapes of a convex hull
+// is most of that work, and a model's setup would otherwise repeat it for every scene.
+//
+// Process-wide and thread-safe (built outside the lock); it keeps the 16 robots asked for
+// last. Only models built from the same RobotModel object (the same shared_ptr, still alive)
+// share an entry, so an entry is exactly what computing the bounds again would give.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "dss/robot/robot_model.h"
+
+namespace dss {
+
+struct ElementShapes {
+  Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere (element_bounds.h)
+  double radius = 0.0;
+  Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();  ///< local box (element_bounds.h)
+  Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+  static constexpr int kMaxInner = 4;  ///< inner balls (inner_shapes.h): centre, radius
+  int num_inner = 0;
+  Eigen::Vector4d inner_S[kMaxInner];
+  /// The inner box, kept only where it holds more than the balls (flat and boxy elements).
+  bool has_inner_box = false;
+  Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
+  Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
+};
+
+/// The bounds of one element (not cached).
+ElementShapes computeElementShapes(const CollisionElement& element);
+
+/// One entry per collision element of the robot: links in model order, each link's elements
+/// in order.
+std::shared_ptr<const std::vector<ElementShapes>> cachedElementShapes(
+    const std::shared_ptr<const RobotModel>& robot);
+
+}  // namespace dss
