@@ -2,6 +2,7 @@
 // through its aisle (discrete and continuous motions, DSS and fcl-hull) and our free flyer
 // through its window; the solution path's CSV names the multi-DOF variables and reads back.
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -43,6 +44,9 @@ BOOST_AUTO_TEST_CASE(the_mobile_base_plans_through_its_aisle) {
     BOOST_TEST(checks > 0, r.out);
     BOOST_TEST(colliding > 0, r.out);
     BOOST_TEST(colliding < checks, r.out);
+    // The problem's setup time is reported (the model with its base-scene table is built).
+    const double setup = j.at("setup_s").get<double>();
+    BOOST_TEST((setup > 0.0 && std::isfinite(setup)), r.out);
   }
 }
 
