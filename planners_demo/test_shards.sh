@@ -31,7 +31,7 @@ def load(paths):
         for line in open(p):
             if line.strip():
                 j = json.loads(line)
-                for k in ("planning_time_s", "planning_cpu_s"):
+                for k in ("planning_time_s", "planning_cpu_s", "setup_s"):
                     j.pop(k)
                 rows.append(json.dumps(j, sort_keys=True))
     return sorted(rows)
