@@ -21,7 +21,7 @@ class Measure {
   }
   /// `b2`: the squared distance from c to obstacle k's world box.
   double sqDistance(const Eigen::Vector3d& c, std::size_t k, double b2) const {
-    if (reach_ >= 0.0 && !obbs_[k].axis_aligned) {
+    if (turned(k)) {
       double error;
       const double o2 = sqDistPointObb(c, obbs_[k], &error);
       if (o2 > b2) b2 = o2;  // NaN: the world box's
@@ -39,68 +39,56 @@ class Measure {
   double reach_ = -1.0;  // negative: no turned obstacle
 };
 // One row of voxel centres cx[0 .. n) against one box: d2[x] = min(d2[x], the squared distance
-// to the world box (lx, ux along x; dy2 + dz2 from the other axes)). Two voxels at a time with
-// SSE2; max and min as the scalar tail forms them (b < a ? a : b is max(a, b) for these
-// finite values, and a NaN distance leaves d2 as it is).
-void rowAligned(const double* cx, double* d2, int n, double lx, double ux, double dy2, double dz2) {
-  int x = 0;
-#if defined(__SSE2__)
-  const __m128d vlx = _mm_set1_pd(lx), vux = _mm_set1_pd(ux), vdy2 = _mm_set1_pd(dy2),
-                vdz2 = _mm_set1_pd(dz2), zero = _mm_setzero_pd();
-  for (; x + 2 <= n; x += 2) {
-    const __m128d c = _mm_loadu_pd(cx + x);
-    const __m128d dx = _mm_max_pd(_mm_max_pd(_mm_sub_pd(vlx, c), _mm_sub_pd(c, vux)), zero);
-    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), vdy2), vdz2);
-    _mm_storeu_pd(d2 + x, _mm_min_pd(b2, _mm_loadu_pd(d2 + x)));
-  }
-#endif
-  for (; x < n; ++x) {
-    const double dx = std::max(std::max(lx - cx[x], cx[x] - ux), 0.0);
-    const double b2 = (dx * dx + dy2) + dz2;
-    d2[x] = b2 < d2[x] ? b2 : d2[x];
-  }
-}
-
-// The same for a turned box: the larger of the world box's and the oriented box's squared
-// distances, the oriented box's frame coordinates t_a = rx[a] (cx + px0) + ryz[a].
-void rowTurned(const double* cx, double* d2, int n, double lx, double ux, double dy2, double dz2,
-               double px0, const double* rx, const double* ryz, const Eigen::Vector3d& h) {
+// to the world box (lx, ux along x; dy2 + dz2 from the other axes)), and for a turned box
+// (kTurned) the larger of that and the oriented box's, its frame coordinates
+// t_a = rx[a] (cx + px0) + ryz[a]. Two voxels at a time with SSE2; max and min as the scalar
+// tail forms them (b < a ? a : b is max(a, b) for these finite values; an oriented distance
+// that is NaN leaves the world box's, a NaN distance leaves d2 as it is).
+template <bool kTurned>
+void row(const double* cx, double* d2, int n, double lx, double ux, double dy2, double dz2,
+         double px0 = 0.0, const double* rx = nullptr, const double* ryz = nullptr,
+         const double* h = nullptr) {
   int x = 0;
 #if defined(__SSE2__)
   const __m128d vlx = _mm_set1_pd(lx), vux = _mm_set1_pd(ux), vdy2 = _mm_set1_pd(dy2),
                 vdz2 = _mm_set1_pd(dz2), zero = _mm_setzero_pd(), vpx0 = _mm_set1_pd(px0),
                 sign = _mm_set1_pd(-0.0);
   __m128d vrx[3], vryz[3], vh[3];
-  for (int a = 0; a < 3; ++a) {
-    vrx[a] = _mm_set1_pd(rx[a]);
-    vryz[a] = _mm_set1_pd(ryz[a]);
-    vh[a] = _mm_set1_pd(h[a]);
-  }
+  if constexpr (kTurned)
+    for (int a = 0; a < 3; ++a) {
+      vrx[a] = _mm_set1_pd(rx[a]);
+      vryz[a] = _mm_set1_pd(ryz[a]);
+      vh[a] = _mm_set1_pd(h[a]);
+    }
   for (; x + 2 <= n; x += 2) {
     const __m128d c = _mm_loadu_pd(cx + x);
     const __m128d dx = _mm_max_pd(_mm_max_pd(_mm_sub_pd(vlx, c), _mm_sub_pd(c, vux)), zero);
-    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), vdy2), vdz2);
-    const __m128d px = _mm_add_pd(c, vpx0);
-    __m128d o[3];
-    for (int a = 0; a < 3; ++a) {
-      const __m128d t = _mm_add_pd(_mm_mul_pd(vrx[a], px), vryz[a]);
-      o[a] = _mm_max_pd(_mm_sub_pd(_mm_andnot_pd(sign, t), vh[a]), zero);
+    __m128d v = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), vdy2), vdz2);
+    if constexpr (kTurned) {
+      const __m128d px = _mm_add_pd(c, vpx0);
+      __m128d o[3];
+      for (int a = 0; a < 3; ++a) {
+        const __m128d t = _mm_add_pd(_mm_mul_pd(vrx[a], px), vryz[a]);
+        o[a] = _mm_max_pd(_mm_sub_pd(_mm_andnot_pd(sign, t), vh[a]), zero);
+      }
+      const __m128d ob2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(o[0], o[0]), _mm_mul_pd(o[1], o[1])),
+                                     _mm_mul_pd(o[2], o[2]));
+      v = _mm_max_pd(ob2, v);  // v when ob2 is NaN
     }
-    const __m128d ob2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(o[0], o[0]), _mm_mul_pd(o[1], o[1])),
-                                   _mm_mul_pd(o[2], o[2]));
-    // max(ob2, b2) gives b2 when ob2 is NaN; min(v, d2) keeps d2 when v is NaN.
-    _mm_storeu_pd(d2 + x, _mm_min_pd(_mm_max_pd(ob2, b2), _mm_loadu_pd(d2 + x)));
+    _mm_storeu_pd(d2 + x, _mm_min_pd(v, _mm_loadu_pd(d2 + x)));  // d2 when v is NaN
   }
 #endif
   for (; x < n; ++x) {
     const double dx = std::max(std::max(lx - cx[x], cx[x] - ux), 0.0);
-    const double b2 = (dx * dx + dy2) + dz2;
-    const double px = cx[x] + px0;
-    const double o0 = std::max(std::abs(rx[0] * px + ryz[0]) - h.x(), 0.0);
-    const double o1 = std::max(std::abs(rx[1] * px + ryz[1]) - h.y(), 0.0);
-    const double o2 = std::max(std::abs(rx[2] * px + ryz[2]) - h.z(), 0.0);
-    const double ob2 = (o0 * o0 + o1 * o1) + o2 * o2;
-    const double v = ob2 > b2 ? ob2 : b2;
+    double v = (dx * dx + dy2) + dz2;
+    if constexpr (kTurned) {
+      const double px = cx[x] + px0;
+      const double o0 = std::max(std::abs(rx[0] * px + ryz[0]) - h[0], 0.0);
+      const double o1 = std::max(std::abs(rx[1] * px + ryz[1]) - h[1], 0.0);
+      const double o2 = std::max(std::abs(rx[2] * px + ryz[2]) - h[2], 0.0);
+      const double ob2 = (o0 * o0 + o1 * o1) + o2 * o2;
+      v = ob2 > v ? ob2 : v;
+    }
     d2[x] = v < d2[x] ? v : d2[x];
   }
 }
@@ -177,9 +165,9 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
             ryz[a] = ob.R(1, a) * py + ob.R(2, a) * pz;
             rx[a] = ob.R(0, a);
           }
-          rowTurned(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2, -ob.c.x(), rx, ryz, ob.h);
+          row<true>(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2, -ob.c.x(), rx, ryz, ob.h.data());
         } else {
-          rowAligned(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2);
+          row<false>(cx.data(), d2.data(), n[0], lx, ux, dy2, dz2);
         }
       }
       for (int x = 0; x < n[0]; ++x) {

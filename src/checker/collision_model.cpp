@@ -169,20 +169,11 @@ void CollisionModel::buildSlots() {
     for (const auto& ce : link.collisions) {
       const ElementShapes& es = shapes->at(next_shape++);
       Element e;
+      static_cast<ElementShapes&>(e) = es;
       e.link = int(l);
       e.slot = int(slots_.size());
       e.source = &ce;
-      e.center_L = es.center_L;
-      e.radius = es.radius;
-      e.box_center_S = es.box_center_S;
-      e.box_half = es.box_half;
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
-      static_assert(Element::kMaxInner == ElementShapes::kMaxInner, "inner balls");
-      e.num_inner = es.num_inner;
-      for (int b = 0; b < es.num_inner; ++b) e.inner_S[b] = es.inner_S[b];
-      e.has_inner_box = es.has_inner_box;
-      e.inner_box_c = es.inner_box_c;
-      e.inner_box_h = es.inner_box_h;
       if (e.has_inner_box && e.inner_box_c != e.box_center_S)
         throw std::logic_error("CollisionModel: the inner box of link " + link.name +
                                " is not centred on its local box");

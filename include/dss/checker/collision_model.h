@@ -31,6 +31,7 @@
 
 #include "dss/checker/base_scene_table.h"
 #include "dss/checker/clearance_grid.h"
+#include "dss/checker/element_shapes_cache.h"
 #include "dss/checker/obb.h"
 #include "dss/checker/pair_blocks.h"
 #include "dss/checker/self_pair_table.h"
@@ -71,30 +72,19 @@ struct CollisionModelOptions {
 class CollisionModel {
  public:
   /// One convex collision element of a link with geometry.
-  struct Element {
-    int link = -1;                                       ///< model link index
-    int slot = -1;                                       ///< index into slots()
-    const CollisionElement* source = nullptr;            ///< in robot()
-    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
-    double radius = 0.0;
-    /// The local box (element_bounds.h): the oriented-box stage of the sweep.
-    Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
-    Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+  /// An element: its own bounds (ElementShapes: bounding sphere in the link frame, local box
+  /// for the oriented-box stage, inner balls and box, all in the shape frame) and where it
+  /// sits in the model.
+  struct Element : ElementShapes {
+    int link = -1;                             ///< model link index
+    int slot = -1;                             ///< index into slots()
+    const CollisionElement* source = nullptr;  ///< in robot()
     bool identity_LS = false;  ///< source->X_LS is exactly the identity (X_WS = X_WL)
     /// The same shape pose and sphere centre in the frame of the slot's pose link (see Slot):
     /// what the sweep uses when the held joints are at held().
     Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
     bool identity_PS = false;
     Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
-    /// Inner balls (inner_shapes.h): centre in the shape frame, radius.
-    static constexpr int kMaxInner = 4;
-    int num_inner = 0;
-    Eigen::Vector4d inner_S[kMaxInner];
-    /// Inner box (inner_shapes.h), axis-aligned in the shape frame: centre (the local box's:
-    /// the sweep tests both boxes in one pass, boxStages), half extents.
-    bool has_inner_box = false;
-    Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
-    Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
   };
   /// A link with geometry.
   struct Slot {

@@ -18,14 +18,18 @@
 namespace dss {
 
 struct ElementShapes {
-  Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere (element_bounds.h)
+  Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere in the link frame
   double radius = 0.0;
-  Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();  ///< local box (element_bounds.h)
+  /// The local box (element_bounds.h): the oriented-box stage of the sweep.
+  Eigen::Vector3d box_center_S = Eigen::Vector3d::Zero();
   Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
-  static constexpr int kMaxInner = 4;  ///< inner balls (inner_shapes.h): centre, radius
+  /// Inner balls (inner_shapes.h): centre in the shape frame, radius.
+  static constexpr int kMaxInner = 4;
   int num_inner = 0;
   Eigen::Vector4d inner_S[kMaxInner];
-  /// The inner box, kept only where it holds more than the balls (flat and boxy elements).
+  /// Inner box (inner_shapes.h), axis-aligned in the shape frame: centre (the local box's: the
+  /// sweep tests both boxes in one pass, boxStages), half extents. Kept only where it holds
+  /// more than the balls (flat and boxy elements).
   bool has_inner_box = false;
   Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
   Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
