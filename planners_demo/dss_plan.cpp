@@ -76,11 +76,14 @@ const char* kUsage =
     "       dss_plan --benchmark [--runs N] [--log FILE] [any of the above]\n"
     "       dss_plan --summarize FILE...      (the JSON lines of several runs, one summary)\n"
     "  options: --planner NAME (RRTConnect) --checker dss|fcl-hull|fcl-mesh (dss)\n"
-    "           --motion discrete|continuous (discrete) --time SECONDS (10) --seed N (1)\n"
+    "           --motion discrete|continuous|ompl (discrete) --time SECONDS (10) --seed N (1)\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
     "           --check-time (report checking_time_s: two clock reads per state check)\n"
     "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, "
     "64)\n"
+    "           --motion: discrete checks OMPL's states at the resolution in an order that\n"
+    "           finds collisions sooner (the same verdicts), ompl with OMPL's own validator,\n"
+    "           continuous certifies the whole motion\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
     "           --workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (bounds of planar and floating\n"
     "           joints' translation; default: the request's workspace_parameters)\n"
@@ -367,7 +370,9 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (a.motion == "continuous") {
     cmv = dss::makeContinuousMotionValidator(p, *checker, a.min_fraction);
     p.si->setMotionValidator(cmv);
-  }
+  } else if (a.motion == "discrete") {
+    p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker));
+  }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
@@ -529,6 +534,8 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     if (a.motion == "continuous")
       p.si->setMotionValidator(
           dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
+    else if (a.motion == "discrete")  // states decided by the switching checker, in our order
+      p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checkers.front()));
     for (const auto& c : checkers) {
       if (!c->isValid(ss.getProblemDefinition()->getStartState(0)))
         std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under "
@@ -788,8 +795,8 @@ int run(int argc, char** argv) {
   for (const auto& c : a.checker_list)
     if (c != "dss" && c != "fcl-hull" && c != "fcl-mesh")
       cli.error("--checker: unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");
-  if (a.motion != "discrete" && a.motion != "continuous")
-    cli.error("--motion: expected discrete or continuous, got '" + a.motion + "'");
+  if (a.motion != "discrete" && a.motion != "continuous" && a.motion != "ompl")
+    cli.error("--motion: expected discrete, continuous or ompl, got '" + a.motion + "'");
   if (a.motion == "continuous" && a.checker_list != std::vector<std::string>{"dss"})
     cli.error("--motion continuous needs --checker dss (the continuous validator is DSS's)");
   if (!a.benchmark) {

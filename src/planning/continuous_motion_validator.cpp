@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "dss/planning/discrete_motion_validator.h"
+
 namespace dss {
 
 ContinuousMotionValidator::ContinuousMotionValidator(
@@ -54,6 +56,8 @@ bool ContinuousMotionValidator::check(const ompl::base::State* s1, const ompl::b
 std::uint64_t motionChecks(const ompl::base::MotionValidator& validator) {
   if (const auto* c = dynamic_cast<const ContinuousMotionValidator*>(&validator))
     return c->validMotions() + c->invalidMotions();
+  if (const auto* d = dynamic_cast<const DiscreteMotionValidator*>(&validator))
+    return d->validMotions() + d->invalidMotions();
   return validator.getValidMotionCount() + validator.getInvalidMotionCount();
 }
 

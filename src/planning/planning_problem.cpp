@@ -37,6 +37,12 @@ std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& p,
   return std::make_shared<ValidityChecker>(p.si, makeStateChecker(p.model, config), p.map);
 }
 
+std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(
+    const Problem& p, const ValidityChecker& checker) {
+  return std::make_shared<DiscreteMotionValidator>(
+      p.si, std::make_shared<const DiscreteMotionChecker>(checker.checkerPtr()), p.map);
+}
+
 std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(
     const Problem& p, const ValidityChecker& checker, double min_fraction) {
   auto dss = std::dynamic_pointer_cast<const DssChecker>(checker.checkerPtr());

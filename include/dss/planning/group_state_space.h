@@ -43,6 +43,9 @@ class GroupStateMap {
   /// values: -1, 1).
   double lower(std::size_t i) const { return lo_[i]; }
   double upper(std::size_t i) const { return hi_[i]; }
+  /// True when the space is one RealVectorStateSpace holding every group value in group order
+  /// (no continuous or multi-DOF joints in the group).
+  bool plain() const { return plain_; }
 
   /// Writes every active joint value of the robot (held values, then the state's group values).
   /// Returns false (q partially written) when a value is non-finite or out of bounds.

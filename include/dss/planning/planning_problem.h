@@ -12,6 +12,7 @@
 
 #include "dss/checker/checker_setup.h"
 #include "dss/planning/continuous_motion_validator.h"
+#include "dss/planning/discrete_motion_validator.h"
 #include "dss/planning/group_state_space.h"
 #include "dss/planning/validity_checker.h"
 
@@ -38,6 +39,11 @@ Problem makeProblem(const LoadedRobot& robot, Scene scene, std::string group,
 /// unknown name.
 std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& problem,
                                                      const CheckerConfig& config);
+
+/// The discrete motion validator on the state checker of a validity checker of the problem
+/// (set that validity checker on problem.si for the direct path: discrete_motion_validator.h).
+std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(
+    const Problem& problem, const ValidityChecker& checker);
 
 /// The continuous motion validator on a DSS validity checker of the problem; throws
 /// std::invalid_argument for another checker. `min_fraction`: see ContinuousMotionChecker.

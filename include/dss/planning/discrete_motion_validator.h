@@ -1,0 +1,54 @@
+// The OMPL motion validator on the discrete motion check (dss/checker/discrete_motion.h): the
+// same states as OMPL's DiscreteMotionValidator (the space's validSegmentCount segments, the
+// interior states interpolated by the space, the end state itself) and the same verdicts and
+// lastValid, with the states checked in an order that finds collisions sooner when lastValid is
+// not wanted.
+//
+// When the space is a plain real vector (the group has no continuous or multi-DOF joints) and
+// the space information's validity checker is a dss::ValidityChecker on the same state checker,
+// the interior states are interpolated in joint values (OMPL's formula, value by value) and
+// checked without an OMPL state or a virtual call; otherwise the space interpolates them and the
+// space information's validity checker decides them. The end state always goes through the
+// space information's validity checker, as in OMPL. Motion counts are atomic (OMPL's own
+// counters are not safe to increment from several threads).
+#pragma once
+
+#include <ompl/base/MotionValidator.h>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <utility>
+
+#include "dss/checker/discrete_motion.h"
+#include "dss/planning/group_state_space.h"
+
+namespace dss {
+
+class DiscreteMotionValidator : public ompl::base::MotionValidator {
+ public:
+  DiscreteMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                          std::shared_ptr<const DiscreteMotionChecker> motion,
+                          std::shared_ptr<const GroupStateMap> map);
+
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+  const DiscreteMotionChecker& motionChecker() const { return *motion_; }
+  std::uint64_t validMotions() const { return valid_motions_.load(std::memory_order_relaxed); }
+  std::uint64_t invalidMotions() const { return invalid_motions_.load(std::memory_order_relaxed); }
+
+ private:
+  /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
+  bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
+             int* first_colliding) const;
+  /// Whether interior states can be checked in joint values (see the header).
+  bool directPath() const;
+
+  std::shared_ptr<const DiscreteMotionChecker> motion_;
+  std::shared_ptr<const GroupStateMap> map_;
+  mutable std::atomic<std::uint64_t> valid_motions_{0}, invalid_motions_{0};
+};
+
+}  // namespace dss

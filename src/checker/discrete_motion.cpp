@@ -1,0 +1,58 @@
+// DiscreteMotionChecker and the order of a motion's states.
+#include "dss/checker/discrete_motion.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace dss {
+
+void discreteCheckOrder(int n, std::vector<int>& order) {
+  order.clear();
+  if (n < 1) return;
+  order.reserve(std::size_t(n));
+  // Three quarters of the way (rounded to the nearest state), then the end.
+  const int probe = std::min(n, std::max(1, static_cast<int>(0.75 * n + 0.5)));
+  if (probe != n) order.push_back(probe);
+  order.push_back(n);
+  // The interior runs, breadth first: the middle of each run, then its two halves. A run's
+  // queue never holds more runs than there are states, and each state is taken once.
+  thread_local std::vector<std::pair<int, int>> runs;
+  runs.clear();
+  if (n >= 2) runs.emplace_back(1, n - 1);
+  for (std::size_t head = 0; head < runs.size(); ++head) {
+    const auto [lo, hi] = runs[head];
+    const int mid = (lo + hi) / 2;
+    if (mid != probe) order.push_back(mid);
+    if (lo < mid) runs.emplace_back(lo, mid - 1);
+    if (hi > mid) runs.emplace_back(mid + 1, hi);
+  }
+}
+
+DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker)
+    : checker_(std::move(checker)) {
+  if (!checker_) throw std::invalid_argument("DiscreteMotionChecker: no state checker");
+}
+
+bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segments,
+                                  double* last_valid_fraction) const {
+  const StateChecker& checker = *checker_;
+  const std::size_t nq = checker.model().robot().numActiveJoints();
+  const int n = std::max(1, segments);
+  thread_local std::vector<double> q;
+  if (q.size() < nq) q.resize(nq);
+  double* const qs = q.data();
+  auto free = [&](int j) {
+    if (j == n) return !checker.collides(q1);
+    const double t = double(j) / double(n);
+    for (std::size_t k = 0; k < nq; ++k) qs[k] = q0[k] + (q1[k] - q0[k]) * t;
+    return !checker.collides(qs);
+  };
+  if (!last_valid_fraction) return motionStatesFree(n, free);
+  int first = 0;
+  const bool ok = motionStatesFree(n, free, &first);
+  if (!ok) *last_valid_fraction = double(first - 1) / double(n);
+  return ok;
+}
+
+}  // namespace dss

@@ -1,0 +1,99 @@
+// DiscreteMotionValidator: OMPL's states of a motion, checked in the discrete motion check's
+// order (see the header).
+#include "dss/planning/discrete_motion_validator.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <vector>
+
+#include "dss/planning/validity_checker.h"
+
+namespace dss {
+
+namespace ob = ompl::base;
+
+namespace {
+// A per-thread state of `space` for interpolated states: kept until the thread ends or asks for
+// another space's (no allocation per motion once warm).
+ob::State* scratchState(const ob::StateSpacePtr& space) {
+  struct Slot {
+    ob::StateSpacePtr space;
+    ob::State* state = nullptr;
+    ~Slot() {
+      if (state) space->freeState(state);
+    }
+  };
+  thread_local Slot slot;
+  if (slot.space != space) {
+    if (slot.state) slot.space->freeState(slot.state);
+    slot.space = space;
+    slot.state = space->allocState();
+  }
+  return slot.state;
+}
+}  // namespace
+
+DiscreteMotionValidator::DiscreteMotionValidator(
+    const ob::SpaceInformationPtr& si, std::shared_ptr<const DiscreteMotionChecker> motion,
+    std::shared_ptr<const GroupStateMap> map)
+    : ob::MotionValidator(si), motion_(std::move(motion)), map_(std::move(map)) {}
+
+bool DiscreteMotionValidator::directPath() const {
+  if (!map_->plain()) return false;
+  const auto* vc = dynamic_cast<const ValidityChecker*>(si_->getStateValidityChecker().get());
+  return vc && &vc->checker() == &motion_->checker();
+}
+
+bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
+  return check(s1, s2, n, nullptr);
+}
+
+bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
+                                          std::pair<ob::State*, double>& lastValid) const {
+  const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
+  int first = 0;
+  if (check(s1, s2, n, &first)) return true;
+  lastValid.second = n > 0 ? double(first - 1) / double(n) : 0.0;
+  if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
+  return false;
+}
+
+bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, int n,
+                                    int* first_colliding) const {
+  const ob::SpaceInformation& si = *si_;
+  const int segments = n < 1 ? 1 : n;
+  bool ok;
+  if (directPath()) {
+    const StateChecker& checker = motion_->checker();
+    const std::size_t nq = checker.model().robot().numActiveJoints();
+    thread_local std::vector<double> q0, q1, q;
+    if (q.size() < nq) q0.resize(nq), q1.resize(nq), q.resize(nq);
+    // The raw values (toJoints' bounds verdict does not matter here: the end state goes through
+    // the validity checker, interior states through the checker's own bounds).
+    map_->toJoints(s1, q0.data());
+    map_->toJoints(s2, q1.data());
+    const double *a = q0.data(), *b = q1.data();
+    double* const qs = q.data();
+    auto free = [&](int j) {
+      if (j == segments) return si.isValid(s2);
+      const double t = double(j) / double(n);
+      for (std::size_t k = 0; k < nq; ++k) qs[k] = a[k] + (b[k] - a[k]) * t;
+      return !checker.collides(qs);
+    };
+    ok = motionStatesFree(segments, free, first_colliding);
+  } else {
+    const ob::StateSpacePtr& space = si.getStateSpace();
+    ob::State* test = scratchState(space);
+    auto free = [&](int j) {
+      if (j == segments) return si.isValid(s2);
+      space->interpolate(s1, s2, double(j) / double(n), test);
+      return si.isValid(test);
+    };
+    ok = motionStatesFree(segments, free, first_colliding);
+  }
+  (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
+  return ok;
+}
+
+}  // namespace dss

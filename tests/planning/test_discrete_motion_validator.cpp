@@ -1,0 +1,315 @@
+// The discrete motion check (dss/checker/discrete_motion.h) and its OMPL validator
+// (discrete_motion_validator.h): the order visits every state of a motion once; the verdict
+// and the first colliding state do not depend on the order; the joint-space interpolation is
+// OMPL's to the bit; and on random motions of our robots (plain, continuous, planar and
+// floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator gives
+// OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
+// without the direct joint-value path.
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <algorithm>
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "dss/checker/discrete_motion.h"
+#include "dss/planning/planning_problem.h"
+#include "dss/robot/multi_dof.h"
+#include "dss/robot/urdf_loader.h"
+#include "dss/scene/plan_request.h"
+#include "dss/scene/scene_loader.h"
+#include "support/checker_fixtures.h"
+#include "support/shared_data.h"
+
+namespace ob = ompl::base;
+
+namespace {
+
+const std::string kRobots = std::string(DSS_SOURCE_DIR) + "/robots";
+
+// A continuous joint about z under a revolute one, reaching a box: an SO(2) part in the space.
+const char* kTurnerUrdf = R"(<robot name="turner">
+  <link name="base"/>
+  <link name="arm"><collision><origin xyz="0.5 0 0"/><geometry><box size="0.8 0.05 0.05"/></geometry></collision></link>
+  <link name="tip"><collision><origin xyz="0.2 0 0"/><geometry><box size="0.3 0.04 0.04"/></geometry></collision></link>
+  <joint name="spin" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+  <joint name="bend" type="revolute"><parent link="arm"/><child link="tip"/><origin xyz="0.9 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2.5" upper="2.5" effort="1" velocity="1"/></joint>
+</robot>)";
+
+// A problem with its validity checker set.
+struct Case {
+  std::string name;
+  dss::Problem p;
+  std::shared_ptr<dss::ValidityChecker> checker;
+};
+
+Case finish(std::string name, dss::Problem p) {
+  Case c{std::move(name), std::move(p), nullptr};
+  c.checker = dss::makeValidityChecker(c.p, {"dss"});
+  c.p.si->setStateValidityChecker(c.checker);
+  c.p.si->setup();
+  return c;
+}
+
+Case fromFiles(const std::string& name, const std::string& urdf, const std::string& srdf,
+               const std::string& scene, const std::string& request) {
+  const auto req = dss::loadPlanRequestYaml(request);
+  dss::LoadedRobot robot = dss::loadRobot(urdf, srdf);
+  std::map<std::string, double> start = req.startState();
+  if (req.workspace) {
+    robot = dss::withWorkspace(robot, req.workspace->first, req.workspace->second);
+    for (const auto& [n, v] : dss::multiDofStateValues(*robot.model, req.start_multi_dof))
+      start[n] = v;
+  }
+  return finish(name, dss::makeProblem(robot, dss::loadScene(scene), req.group_name, start));
+}
+
+Case ourCase(const std::string& robot, const std::string& scene) {
+  const std::string dir = kRobots + "/" + robot;
+  return fromFiles(robot, dir + "/" + robot + ".urdf", dir + "/" + robot + ".srdf",
+                   dir + "/scenes/" + scene + ".yaml", dir + "/scenes/" + scene + "_request.yaml");
+}
+
+Case turnerCase() {
+  dss::LoadedRobot r;
+  r.model =
+      std::make_shared<const dss::RobotModel>(dss::loadUrdfString(kTurnerUrdf, "turner.urdf", "."));
+  dss::Scene scene;
+  for (int k = 0; k < 3; ++k) {
+    dss::Obstacle o;
+    o.name = o.object_id = "post" + std::to_string(k);
+    o.shape = dss::Box::fromSize(Eigen::Vector3d(0.1, 0.1, 0.5));
+    const double a = 2.0 * M_PI * k / 3.0 + 0.4;
+    o.X_WO = Eigen::Isometry3d(Eigen::Translation3d(1.1 * std::cos(a), 1.1 * std::sin(a), 0.0));
+    o.X_FO = o.X_WO;
+    scene.obstacles.push_back(o);
+  }
+  return finish("turner", dss::makeProblem(r, scene, "", {}));
+}
+
+// A seeded uniform state of the case's space: group values within their bounds (quaternions
+// normalised by the map).
+void randomState(const Case& c, std::mt19937_64& rng, ob::State* s) {
+  const dss::GroupStateMap& map = *c.p.map;
+  std::vector<double> g(map.dimension());
+  for (std::size_t i = 0; i < g.size(); ++i)
+    g[i] = std::uniform_real_distribution<double>(map.lower(i), map.upper(i))(rng);
+  map.fromGroupValues(g.data(), s);
+}
+
+// Random motions of the case's space: from a valid state (as OMPL assumes), to a uniform state
+// (every other motion) or to a point at most a fifth of the way to one (short motions).
+// Compares the validator with OMPL's, with and without lastValid; returns the motions found
+// colliding.
+int compareWithOmpl(const Case& c, const ob::MotionValidator& ours, int motions,
+                    std::uint64_t seed) {
+  const ob::SpaceInformationPtr& si = c.p.si;
+  const ob::StateSpacePtr& space = si->getStateSpace();
+  ob::DiscreteMotionValidator ompl(si);
+  std::mt19937_64 rng(seed);
+  ob::ScopedState<> a(space), b(space), far(space), la(space), lb(space);
+  int colliding = 0;
+  for (int m = 0; m < motions; ++m) {
+    int tries = 0;
+    do randomState(c, rng, a.get());
+    while (!si->isValid(a.get()) && ++tries < 1000);
+    randomState(c, rng, far.get());
+    if (m % 2 == 0)
+      space->copyState(b.get(), far.get());
+    else
+      space->interpolate(a.get(), far.get(), 0.2 * std::uniform_real_distribution<>()(rng),
+                         b.get());
+    const bool expect = ompl.checkMotion(a.get(), b.get());
+    BOOST_TEST(ours.checkMotion(a.get(), b.get()) == expect, c.name << " motion " << m);
+    std::pair<ob::State*, double> lv_ompl{la.get(), -1.0}, lv_ours{lb.get(), -2.0};
+    const bool expect_lv = ompl.checkMotion(a.get(), b.get(), lv_ompl);
+    BOOST_TEST(expect_lv == expect);
+    BOOST_TEST(ours.checkMotion(a.get(), b.get(), lv_ours) == expect_lv, c.name << " motion " << m);
+    if (!expect_lv) {
+      ++colliding;
+      BOOST_TEST(lv_ours.second == lv_ompl.second, c.name << " motion " << m);
+      BOOST_TEST(space->equalStates(la.get(), lb.get()), c.name << " motion " << m);
+    }
+  }
+  return colliding;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(discrete_motion_validator)
+
+BOOST_AUTO_TEST_CASE(the_order_takes_every_state_once_three_quarters_then_the_end_first) {
+  std::vector<int> order;
+  for (int n = 0; n <= 300; ++n) {
+    dss::discreteCheckOrder(n, order);
+    BOOST_REQUIRE(order.size() == std::size_t(n));
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (int j = 0; j < n; ++j) BOOST_REQUIRE(sorted[std::size_t(j)] == j + 1);
+    if (n >= 4) {
+      BOOST_TEST(order[0] == static_cast<int>(std::lround(0.75 * n)), "n " << n);
+      BOOST_TEST(order[1] == n);
+      BOOST_TEST(order[2] == n / 2, "n " << n);  // then the middle of 1 .. n - 1
+    }
+  }
+  dss::discreteCheckOrder(1, order);
+  BOOST_TEST(order == std::vector<int>{1});
+  dss::discreteCheckOrder(2, order);
+  BOOST_TEST(order == (std::vector<int>{2, 1}));
+  dss::discreteCheckOrder(3, order);
+  BOOST_TEST(order == (std::vector<int>{2, 3, 1}));
+}
+
+BOOST_AUTO_TEST_CASE(the_verdict_and_first_colliding_state_do_not_depend_on_the_order) {
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 1 + int(rng() % 60);
+    std::set<int> colliding;  // empty, one state, a run, or scattered states
+    const int kind = int(rng() % 4);
+    if (kind == 1) colliding.insert(1 + int(rng() % unsigned(n)));
+    if (kind == 2) {
+      const int lo = 1 + int(rng() % unsigned(n)), len = 1 + int(rng() % 8);
+      for (int j = lo; j <= std::min(n, lo + len - 1); ++j) colliding.insert(j);
+    }
+    if (kind == 3)
+      for (int j = 1; j <= n; ++j)
+        if (rng() % 5 == 0) colliding.insert(j);
+    std::vector<int> asked;
+    auto free = [&](int j) {
+      asked.push_back(j);
+      return colliding.count(j) == 0;
+    };
+    const bool verdict = dss::motionStatesFree(n, free);
+    BOOST_REQUIRE(verdict == colliding.empty());
+    // Each state at most once; all of them for a free motion.
+    std::set<int> once(asked.begin(), asked.end());
+    BOOST_REQUIRE(once.size() == asked.size());
+    if (verdict) BOOST_REQUIRE(int(asked.size()) == n);
+    asked.clear();
+    int first = -1;
+    BOOST_REQUIRE(dss::motionStatesFree(n, free, &first) == verdict);
+    BOOST_REQUIRE(first == (verdict ? n + 1 : *colliding.begin()));
+    // In order from the start, up to the first colliding state.
+    BOOST_REQUIRE(int(asked.size()) == std::min(first, n));
+    for (std::size_t k = 0; k < asked.size(); ++k) BOOST_REQUIRE(asked[k] == int(k) + 1);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(joint_value_interpolation_is_omples_to_the_bit) {
+  // OMPL's real vector interpolation against the formula the direct path uses.
+  const Case c = ourCase("dss_arm7", "shelf");
+  BOOST_REQUIRE(c.p.map->plain());
+  const ob::StateSpacePtr& space = c.p.si->getStateSpace();
+  ob::StateSamplerPtr sampler = space->allocStateSampler();
+  ob::ScopedState<> a(space), b(space), s(space);
+  const std::size_t nq = c.p.model->robot().numActiveJoints();
+  std::vector<double> qa(nq), qb(nq), qs(nq), q(nq);
+  int differing_from_naive = 0;
+  for (int k = 0; k < 2000; ++k) {
+    sampler->sampleUniform(a.get());
+    sampler->sampleUniform(b.get());
+    const int n = 1 + k % 97;
+    const int j = k % n;
+    const double t = double(j) / double(n);
+    space->interpolate(a.get(), b.get(), t, s.get());
+    c.p.map->toJoints(a.get(), qa.data());
+    c.p.map->toJoints(b.get(), qb.data());
+    c.p.map->toJoints(s.get(), qs.data());
+    for (std::size_t i = 0; i < nq; ++i) {
+      q[i] = qa[i] + (qb[i] - qa[i]) * t;
+      BOOST_REQUIRE(q[i] == qs[i]);
+      differing_from_naive += (1.0 - t) * qa[i] + t * qb[i] != qs[i];
+    }
+  }
+  // The comparison can fail: another formula of the same line differs in the last bits.
+  BOOST_TEST(differing_from_naive > 0);
+}
+
+BOOST_AUTO_TEST_CASE(the_joint_space_check_answers_as_its_states_one_by_one) {
+  const Case c = ourCase("dss_arm7", "shelf");
+  const auto checker = c.checker->checkerPtr();
+  const dss::DiscreteMotionChecker motion(checker);
+  const std::size_t nq = c.p.model->robot().numActiveJoints();
+  std::mt19937_64 rng(11);
+  int colliding = 0;
+  for (int m = 0; m < 400; ++m) {
+    const std::vector<double> q0 = dss_test::randomGroupState(*c.p.model, rng);
+    const std::vector<double> q1 = dss_test::randomGroupState(*c.p.model, rng);
+    const int n = 1 + int(rng() % 40);
+    // The reference: every state in order.
+    int first = n + 1;
+    std::vector<double> q(nq);
+    for (int j = 1; j <= n && first > n; ++j) {
+      const double t = double(j) / double(n);
+      for (std::size_t k = 0; k < nq; ++k) q[k] = q0[k] + (q1[k] - q0[k]) * t;
+      if (checker->collides(j == n ? q1.data() : q.data())) first = j;
+    }
+    colliding += first <= n;
+    BOOST_TEST(motion.clear(q0.data(), q1.data(), n) == (first > n));
+    double last = -1.0;
+    BOOST_TEST(motion.clear(q0.data(), q1.data(), n, &last) == (first > n));
+    if (first <= n) BOOST_TEST(last == double(first - 1) / double(n));
+  }
+  BOOST_TEST_MESSAGE("colliding motions: " << colliding << " of 400");
+  BOOST_TEST(colliding > 40);
+  BOOST_TEST(colliding < 360);
+  BOOST_CHECK_THROW(dss::DiscreteMotionChecker(nullptr), std::invalid_argument);
+}
+
+BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_our_robots) {
+  std::vector<Case> cases;
+  cases.push_back(ourCase("dss_arm7", "shelf"));         // plain: the direct path
+  cases.push_back(turnerCase());                         // a continuous joint: SO(2)
+  cases.push_back(ourCase("dss_mobile_base", "aisle"));  // SE(2)
+  cases.push_back(ourCase("dss_free_flyer", "window"));  // SE(3)
+  for (const Case& c : cases) {
+    auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker);
+    const int colliding = compareWithOmpl(c, *ours, 400, 3);
+    BOOST_TEST_MESSAGE(c.name << ": " << colliding << " of 400 motions colliding");
+    BOOST_TEST(colliding > 20, c.name);
+    BOOST_TEST(colliding < 380, c.name);
+    BOOST_TEST(dss::motionChecks(*ours) == 2u * 400u, c.name);  // with and without lastValid
+  }
+}
+
+BOOST_AUTO_TEST_CASE(another_validity_checker_decides_every_state) {
+  // A validity checker that is not the motion checker's (here: FCL on the same model): the
+  // validator asks it for every state, so the verdicts are FCL's, as OMPL's validator gives.
+  Case c = ourCase("dss_arm7", "shelf");
+  auto dss_checker = c.checker;
+  auto fcl = dss::makeValidityChecker(c.p, {"fcl-hull"});
+  c.p.si->setStateValidityChecker(fcl);
+  auto ours = dss::makeDiscreteMotionValidator(c.p, *dss_checker);
+  const std::uint64_t dss_checks = dss_checker->counters().checks;
+  compareWithOmpl(c, *ours, 200, 5);
+  BOOST_TEST(dss_checker->counters().checks == dss_checks);  // DSS never asked
+  BOOST_TEST(fcl->counters().checks > 0u);
+}
+
+BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_mbm_problems, DSS_NEEDS_SHARED) {
+  const std::string robots = std::string(DSS_SHARED_DIR) + "/robots";
+  for (const std::string type : {"bookshelf_small", "bookshelf_tall", "bookshelf_thin", "box",
+                                 "cage", "table_pick", "table_under_pick"}) {
+    for (const std::string robot : {"panda", "ur5"}) {
+      const std::string dir = robot == "panda" ? robots + "/panda" : robots + "/ur5_robotiq85";
+      const std::string folder = dss_test::sharedPath("scenes/mbm_" + robot + "/" + type);
+      const Case c =
+          fromFiles(robot + " " + type, dir + "/" + robot + ".urdf", dir + "/" + robot + ".srdf",
+                    folder + "/scene0001.yaml", folder + "/request0001.yaml");
+      BOOST_REQUIRE(c.p.map->plain());
+      auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker);
+      const int colliding = compareWithOmpl(c, *ours, 150, 17);
+      BOOST_TEST_MESSAGE(c.name << ": " << colliding << " of 150 motions colliding");
+      BOOST_TEST(colliding > 5, c.name);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
