@@ -551,6 +551,7 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     b.addExperimentParameter("padding", "REAL", std::to_string(a.padding));
     b.addExperimentParameter("self_padding", "REAL", std::to_string(a.self_padding));
     b.addExperimentParameter("continuous_motion", "BOOLEAN", a.motion == "continuous" ? "1" : "0");
+    b.addExperimentParameter("motion_validator", "TEXT", a.motion);
     b.addExperimentParameter("dss_mode", "TEXT", dss::toString(a.dss_options.mode));
     b.addExperimentParameter("dss_max_iterations", "INTEGER",
                              std::to_string(a.dss_options.max_iterations));

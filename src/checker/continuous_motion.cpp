@@ -313,10 +313,12 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
 }
 
 bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* last) const {
-  // Without a last valid fraction to report, a colliding end state decides the motion at once:
-  // it is checked (with the poses computed for it) when the whole motion is not cleared, before
-  // the first midpoint.
-  bool check_end = last == nullptr;
+  // Without a last valid fraction to report, a colliding state decides the motion at once: when
+  // the whole motion is not cleared at once, the state three quarters of the way and the end
+  // state are checked before the first midpoint, as the discrete motion check orders them
+  // (discrete_motion.h: a planner's motion mostly collides near its far end, and its end may be
+  // a state the planner already holds).
+  bool probe = last == nullptr;
   double last_storage = 0.0;
   if (!last) last = &last_storage;
   *last = 0.0;
@@ -431,9 +433,18 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       *last = iv.ta;
       return false;
     }
-    if (check_end) {
-      check_end = false;
-      if (checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl)) return false;
+    if (probe) {  // the two states (above); the pool may move: XA and XB are not used below
+      probe = false;
+      const double tp = 0.75;
+      for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tp * (q1[i] - q0[i]);
+      for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tp, qa + a);
+      const int pp = sc.acquire(nl);
+      Eigen::Isometry3d* XP = sc.pool.data() + std::size_t(pp) * nl;
+      m.kinematics().computeLinkPoses(qa, XP);
+      const bool hit = checker_->collidesWithPoses(qa, XP);
+      sc.release(pp);
+      if (hit || checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl))
+        return false;
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
     for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);

@@ -59,8 +59,9 @@ class ContinuousMotionChecker {
   /// True when the straight motion from q0 to q1 (active joint values) is free of collisions.
   /// Otherwise `last_valid_fraction` (optional) receives the start of the first sub-motion that
   /// could not be cleared: every state before it is free. States outside the model's bounds
-  /// make the motion invalid (last valid fraction 0). Without `last_valid_fraction` the end
-  /// state q1 is checked first: a colliding end answers at once (the same answer).
+  /// make the motion invalid (last valid fraction 0). Without `last_valid_fraction`, when the
+  /// whole motion is not cleared at once, the state three quarters of the way and the end state
+  /// q1 are checked before anything else: a colliding one answers at once (the same answer).
   bool clear(const double* q0, const double* q1, double* last_valid_fraction = nullptr) const;
 
   /// The padding of each model slot over the straight motion qa -> qb (all active joints):

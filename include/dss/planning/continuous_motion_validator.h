@@ -33,7 +33,7 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
   std::uint64_t invalidMotions() const { return invalid_motions_.load(std::memory_order_relaxed); }
 
  private:
-  /// `last` (nullptr: not wanted, the end state is then checked first): the last valid fraction.
+  /// `last` (nullptr: not wanted, two states are then checked first): the last valid fraction.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, double* last) const;
 
   std::shared_ptr<const ContinuousMotionChecker> motion_;
