@@ -29,6 +29,20 @@ void discreteCheckOrder(int n, std::vector<int>& order) {
   }
 }
 
+const int* cachedCheckOrder(int n) {
+  constexpr int kCached = 256;
+  thread_local std::vector<std::vector<int>> cache(kCached + 1);
+  thread_local std::vector<int> scratch;
+  if (n < 1) return nullptr;
+  if (n > kCached) {
+    discreteCheckOrder(n, scratch);
+    return scratch.data();
+  }
+  std::vector<int>& order = cache[std::size_t(n)];
+  if (order.empty()) discreteCheckOrder(n, order);
+  return order.data();
+}
+
 DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker)
     : checker_(std::move(checker)) {
   if (!checker_) throw std::invalid_argument("DiscreteMotionChecker: no state checker");

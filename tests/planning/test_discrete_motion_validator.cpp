@@ -159,6 +159,12 @@ BOOST_AUTO_TEST_CASE(the_order_takes_every_state_once_three_quarters_then_the_en
       BOOST_TEST(order[2] == n / 2, "n " << n);  // then the middle of 1 .. n - 1
     }
   }
+  // The per-thread cache hands out the same orders, below and above its size.
+  for (int n : {1, 2, 7, 100, 256, 257, 1000, 7}) {
+    dss::discreteCheckOrder(n, order);
+    const int* cached = dss::cachedCheckOrder(n);
+    BOOST_TEST(std::vector<int>(cached, cached + n) == order, "n " << n);
+  }
   dss::discreteCheckOrder(1, order);
   BOOST_TEST(order == std::vector<int>{1});
   dss::discreteCheckOrder(2, order);

@@ -29,6 +29,9 @@ namespace dss {
 /// The order of the states 1 .. n of a motion when only the verdict is wanted (see above):
 /// every state exactly once. Written into `order` (resized to n).
 void discreteCheckOrder(int n, std::vector<int>& order);
+/// The same order, n values, from a per-thread cache (motions of up to 256 segments; longer
+/// ones are ordered into per-thread scratch). Valid until the thread's next call.
+const int* cachedCheckOrder(int n);
 
 /// Whether the states 1 .. n of a motion are all free, by `free(j)` (true: state j is free).
 /// With `first_colliding` null, in discreteCheckOrder(n) order; otherwise in order from state 1,
@@ -44,10 +47,9 @@ bool motionStatesFree(int n, Free&& free, int* first_colliding = nullptr) {
     *first_colliding = n + 1;
     return true;
   }
-  thread_local std::vector<int> order;
-  discreteCheckOrder(n, order);
+  const int* order = cachedCheckOrder(n);
   for (int k = 0; k < n; ++k)
-    if (!free(order[std::size_t(k)])) return false;
+    if (!free(order[k])) return false;
   return true;
 }
 
