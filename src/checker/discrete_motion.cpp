@@ -1,4 +1,4 @@
-// DiscreteMotionChecker and the order of a motion's states.
+// DiscreteMotionChecker and the orders of a motion's states.
 #include "dss/checker/discrete_motion.h"
 
 #include <algorithm>
@@ -7,39 +7,48 @@
 
 namespace dss {
 
-void discreteCheckOrder(int n, std::vector<int>& order) {
+void discreteCheckOrder(int n, MotionOrder kind, std::vector<int>& order) {
   order.clear();
   if (n < 1) return;
   order.reserve(std::size_t(n));
-  // Three quarters of the way (rounded to the nearest state), then the end.
-  const int probe = std::min(n, std::max(1, static_cast<int>(0.75 * n + 0.5)));
-  if (probe != n) order.push_back(probe);
-  order.push_back(n);
-  // The interior runs, breadth first: the middle of each run, then its two halves. A run's
-  // queue never holds more runs than there are states, and each state is taken once.
+  // The states taken out of the bisection: the end (first or last), and with kEndLast the
+  // states three quarters and nine tenths of the way (rounded to the nearest state).
+  auto at = [n](double f) { return std::min(n, std::max(1, static_cast<int>(f * n + 0.5))); };
+  int first[2] = {0, 0};
+  if (kind == MotionOrder::kEndFirst) {
+    order.push_back(n);
+  } else {
+    first[0] = at(0.75);
+    first[1] = at(0.9);
+    for (int j : first)
+      if (j != n && std::find(order.begin(), order.end(), j) == order.end()) order.push_back(j);
+  }
+  // The interior runs, breadth first: the middle of each run, then its two halves.
   thread_local std::vector<std::pair<int, int>> runs;
   runs.clear();
   if (n >= 2) runs.emplace_back(1, n - 1);
   for (std::size_t head = 0; head < runs.size(); ++head) {
     const auto [lo, hi] = runs[head];
     const int mid = (lo + hi) / 2;
-    if (mid != probe) order.push_back(mid);
+    if (mid != first[0] && mid != first[1]) order.push_back(mid);
     if (lo < mid) runs.emplace_back(lo, mid - 1);
     if (hi > mid) runs.emplace_back(mid + 1, hi);
   }
+  if (kind == MotionOrder::kEndLast) order.push_back(n);
 }
 
-const int* cachedCheckOrder(int n) {
+const int* cachedCheckOrder(int n, MotionOrder kind) {
   constexpr int kCached = 256;
-  thread_local std::vector<std::vector<int>> cache(kCached + 1);
+  thread_local std::vector<std::vector<int>> cache[2] = {
+      std::vector<std::vector<int>>(kCached + 1), std::vector<std::vector<int>>(kCached + 1)};
   thread_local std::vector<int> scratch;
   if (n < 1) return nullptr;
   if (n > kCached) {
-    discreteCheckOrder(n, scratch);
+    discreteCheckOrder(n, kind, scratch);
     return scratch.data();
   }
-  std::vector<int>& order = cache[std::size_t(n)];
-  if (order.empty()) discreteCheckOrder(n, order);
+  std::vector<int>& order = cache[kind == MotionOrder::kEndLast][std::size_t(n)];
+  if (order.empty()) discreteCheckOrder(n, kind, order);
   return order.data();
 }
 
@@ -49,7 +58,7 @@ DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker>
 }
 
 bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segments,
-                                  double* last_valid_fraction) const {
+                                  double* last_valid_fraction, MotionOrder kind) const {
   const StateChecker& checker = *checker_;
   const std::size_t nq = checker.model().robot().numActiveJoints();
   const int n = std::max(1, segments);
@@ -62,7 +71,7 @@ bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segmen
     for (std::size_t k = 0; k < nq; ++k) qs[k] = q0[k] + (q1[k] - q0[k]) * t;
     return !checker.collides(qs);
   };
-  if (!last_valid_fraction) return motionStatesFree(n, free);
+  if (!last_valid_fraction) return motionStatesFree(n, free, nullptr, kind);
   int first = 0;
   const bool ok = motionStatesFree(n, free, &first);
   if (!ok) *last_valid_fraction = double(first - 1) / double(n);

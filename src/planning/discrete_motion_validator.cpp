@@ -38,10 +38,8 @@ DiscreteMotionValidator::DiscreteMotionValidator(
     std::shared_ptr<const GroupStateMap> map)
     : ob::MotionValidator(si), motion_(std::move(motion)), map_(std::move(map)) {}
 
-bool DiscreteMotionValidator::directPath() const {
-  if (!map_->plain()) return false;
-  const auto* vc = dynamic_cast<const ValidityChecker*>(si_->getStateValidityChecker().get());
-  return vc && &vc->checker() == &motion_->checker();
+bool DiscreteMotionValidator::directPath(const ValidityChecker* vc) const {
+  return map_->plain() && vc && &vc->checker() == &motion_->checker();
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
@@ -63,8 +61,12 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
                                     int* first_colliding) const {
   const ob::SpaceInformation& si = *si_;
   const int segments = n < 1 ? 1 : n;
+  const auto* vc = dynamic_cast<const ValidityChecker*>(si.getStateValidityChecker().get());
+  // A motion from the state just found valid runs towards one the planner holds: end last.
+  const MotionOrder kind =
+      vc && vc->lastFoundFree(s1) ? MotionOrder::kEndLast : MotionOrder::kEndFirst;
   bool ok;
-  if (directPath()) {
+  if (directPath(vc)) {
     const StateChecker& checker = motion_->checker();
     const std::size_t nq = checker.model().robot().numActiveJoints();
     thread_local std::vector<double> q0, q1, q;
@@ -81,7 +83,7 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
       for (std::size_t k = 0; k < nq; ++k) qs[k] = a[k] + (b[k] - a[k]) * t;
       return !checker.collides(qs);
     };
-    ok = motionStatesFree(segments, free, first_colliding);
+    ok = motionStatesFree(segments, free, first_colliding, kind);
   } else {
     const ob::StateSpacePtr& space = si.getStateSpace();
     ob::State* test = scratchState(space);
@@ -90,7 +92,7 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
       space->interpolate(s1, s2, double(j) / double(n), test);
       return si.isValid(test);
     };
-    ok = motionStatesFree(segments, free, first_colliding);
+    ok = motionStatesFree(segments, free, first_colliding, kind);
   }
   (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
   return ok;

@@ -1,6 +1,10 @@
 // ValidityChecker: OMPL states to joint values, then the state checker (see the header).
 #include "dss/planning/validity_checker.h"
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <atomic>
+#include <cstring>
 #include <vector>
 
 namespace dss {
@@ -11,6 +15,24 @@ double* jointScratch(std::size_t n) {
   if (q.size() < n) q.resize(n);
   return q.data();
 }
+
+// The last state an adapter (by id; 0: none) found free on this thread, by its values.
+struct LastFree {
+  static constexpr std::size_t kMaxValues = 16;
+  std::uint64_t owner = 0;
+  double v[kMaxValues];
+};
+LastFree& lastFree() {
+  thread_local LastFree last;
+  return last;
+}
+std::atomic<std::uint64_t> next_id{1};
+
+// The values of a plain real vector state of n values, or null (another space, or too many).
+const double* plainValues(const GroupStateMap& map, const ompl::base::State* s) {
+  if (!map.plain() || map.dimension() > LastFree::kMaxValues) return nullptr;
+  return s->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+}
 }  // namespace
 
 ValidityChecker::ValidityChecker(const ompl::base::SpaceInformationPtr& si,
@@ -19,7 +41,8 @@ ValidityChecker::ValidityChecker(const ompl::base::SpaceInformationPtr& si,
     : ompl::base::StateValidityChecker(si),
       checker_(std::move(checker)),
       dss_(dynamic_cast<const DssChecker*>(checker_.get())),
-      map_(std::move(map)) {
+      map_(std::move(map)),
+      id_(next_id.fetch_add(1, std::memory_order_relaxed)) {
   specs_.clearanceComputationType = dss_
                                         ? ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE
                                         : ompl::base::StateValidityCheckerSpecs::NONE;
@@ -32,7 +55,19 @@ bool ValidityChecker::isValid(const ompl::base::State* state) const {
     out_of_bounds_.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
-  return checker_->check(q) == StateVerdict::kFree;
+  if (checker_->check(q) != StateVerdict::kFree) return false;
+  if (const double* v = plainValues(*map_, state)) {
+    LastFree& last = lastFree();
+    last.owner = id_;
+    std::memcpy(last.v, v, map_->dimension() * sizeof(double));
+  }
+  return true;
+}
+
+bool ValidityChecker::lastFoundFree(const ompl::base::State* state) const {
+  const double* v = plainValues(*map_, state);
+  const LastFree& last = lastFree();
+  return v && last.owner == id_ && std::memcmp(last.v, v, map_->dimension() * sizeof(double)) == 0;
 }
 
 double ValidityChecker::clearance(const ompl::base::State* state) const {

@@ -1,10 +1,11 @@
 // The discrete motion check (dss/checker/discrete_motion.h) and its OMPL validator
-// (discrete_motion_validator.h): the order visits every state of a motion once; the verdict
+// (discrete_motion_validator.h): each order visits every state of a motion once; the verdict
 // and the first colliding state do not depend on the order; the joint-space interpolation is
 // OMPL's to the bit; and on random motions of our robots (plain, continuous, planar and
 // floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator gives
 // OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
-// without the direct joint-value path.
+// without the direct joint-value path, in both orders; the validity checker knows the last state
+// it found free.
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -126,7 +127,12 @@ int compareWithOmpl(const Case& c, const ob::MotionValidator& ours, int motions,
     else
       space->interpolate(a.get(), far.get(), 0.2 * std::uniform_real_distribution<>()(rng),
                          b.get());
+    // Ours right after the start was found valid (the end-last order, as from RRTConnect's goal
+    // tree), then after OMPL's validator has checked other states (mostly the end-first order).
+    const bool a_valid = si->isValid(a.get());
+    const bool end_last = ours.checkMotion(a.get(), b.get());
     const bool expect = ompl.checkMotion(a.get(), b.get());
+    BOOST_TEST(end_last == expect, c.name << " motion " << m << (a_valid ? "" : " (a invalid)"));
     BOOST_TEST(ours.checkMotion(a.get(), b.get()) == expect, c.name << " motion " << m);
     std::pair<ob::State*, double> lv_ompl{la.get(), -1.0}, lv_ours{lb.get(), -2.0};
     const bool expect_lv = ompl.checkMotion(a.get(), b.get(), lv_ompl);
@@ -145,32 +151,40 @@ int compareWithOmpl(const Case& c, const ob::MotionValidator& ours, int motions,
 
 BOOST_AUTO_TEST_SUITE(discrete_motion_validator)
 
-BOOST_AUTO_TEST_CASE(the_order_takes_every_state_once_three_quarters_then_the_end_first) {
+BOOST_AUTO_TEST_CASE(each_order_takes_every_state_once) {
+  using dss::MotionOrder;
   std::vector<int> order;
-  for (int n = 0; n <= 300; ++n) {
-    dss::discreteCheckOrder(n, order);
-    BOOST_REQUIRE(order.size() == std::size_t(n));
-    std::vector<int> sorted = order;
-    std::sort(sorted.begin(), sorted.end());
-    for (int j = 0; j < n; ++j) BOOST_REQUIRE(sorted[std::size_t(j)] == j + 1);
-    if (n >= 4) {
-      BOOST_TEST(order[0] == static_cast<int>(std::lround(0.75 * n)), "n " << n);
-      BOOST_TEST(order[1] == n);
-      BOOST_TEST(order[2] == n / 2, "n " << n);  // then the middle of 1 .. n - 1
+  for (MotionOrder kind : {MotionOrder::kEndFirst, MotionOrder::kEndLast}) {
+    for (int n = 0; n <= 300; ++n) {
+      dss::discreteCheckOrder(n, kind, order);
+      BOOST_REQUIRE(order.size() == std::size_t(n));
+      std::vector<int> sorted = order;
+      std::sort(sorted.begin(), sorted.end());
+      for (int j = 0; j < n; ++j) BOOST_REQUIRE(sorted[std::size_t(j)] == j + 1);
+      if (n >= 20 && kind == MotionOrder::kEndFirst) {
+        BOOST_TEST(order[0] == n);      // the end, then the middle of 1 .. n - 1
+        BOOST_TEST(order[1] == n / 2);  // (OMPL's order)
+      }
+      if (n >= 20 && kind == MotionOrder::kEndLast) {
+        BOOST_TEST(order[0] == static_cast<int>(std::lround(0.75 * n)), "n " << n);
+        BOOST_TEST(order[1] == static_cast<int>(std::lround(0.9 * n)), "n " << n);
+        BOOST_TEST(order[2] == n / 2);
+        BOOST_TEST(order.back() == n);
+      }
+    }
+    // The per-thread cache hands out the same orders, below and above its size.
+    for (int n : {1, 2, 7, 100, 256, 257, 1000, 7}) {
+      dss::discreteCheckOrder(n, kind, order);
+      const int* cached = dss::cachedCheckOrder(n, kind);
+      BOOST_TEST(std::vector<int>(cached, cached + n) == order, "n " << n);
     }
   }
-  // The per-thread cache hands out the same orders, below and above its size.
-  for (int n : {1, 2, 7, 100, 256, 257, 1000, 7}) {
-    dss::discreteCheckOrder(n, order);
-    const int* cached = dss::cachedCheckOrder(n);
-    BOOST_TEST(std::vector<int>(cached, cached + n) == order, "n " << n);
-  }
-  dss::discreteCheckOrder(1, order);
+  dss::discreteCheckOrder(1, MotionOrder::kEndLast, order);
   BOOST_TEST(order == std::vector<int>{1});
-  dss::discreteCheckOrder(2, order);
-  BOOST_TEST(order == (std::vector<int>{2, 1}));
-  dss::discreteCheckOrder(3, order);
-  BOOST_TEST(order == (std::vector<int>{2, 3, 1}));
+  dss::discreteCheckOrder(3, MotionOrder::kEndFirst, order);
+  BOOST_TEST(order == (std::vector<int>{3, 1, 2}));
+  dss::discreteCheckOrder(4, MotionOrder::kEndLast, order);
+  BOOST_TEST(order == (std::vector<int>{3, 2, 1, 4}));
 }
 
 BOOST_AUTO_TEST_CASE(the_verdict_and_first_colliding_state_do_not_depend_on_the_order) {
@@ -192,12 +206,15 @@ BOOST_AUTO_TEST_CASE(the_verdict_and_first_colliding_state_do_not_depend_on_the_
       asked.push_back(j);
       return colliding.count(j) == 0;
     };
-    const bool verdict = dss::motionStatesFree(n, free);
-    BOOST_REQUIRE(verdict == colliding.empty());
-    // Each state at most once; all of them for a free motion.
-    std::set<int> once(asked.begin(), asked.end());
-    BOOST_REQUIRE(once.size() == asked.size());
-    if (verdict) BOOST_REQUIRE(int(asked.size()) == n);
+    const bool verdict = colliding.empty();
+    for (dss::MotionOrder kind : {dss::MotionOrder::kEndFirst, dss::MotionOrder::kEndLast}) {
+      asked.clear();
+      BOOST_REQUIRE(dss::motionStatesFree(n, free, nullptr, kind) == verdict);
+      // Each state at most once; all of them for a free motion.
+      std::set<int> once(asked.begin(), asked.end());
+      BOOST_REQUIRE(once.size() == asked.size());
+      if (verdict) BOOST_REQUIRE(int(asked.size()) == n);
+    }
     asked.clear();
     int first = -1;
     BOOST_REQUIRE(dss::motionStatesFree(n, free, &first) == verdict);
@@ -259,6 +276,8 @@ BOOST_AUTO_TEST_CASE(the_joint_space_check_answers_as_its_states_one_by_one) {
     }
     colliding += first <= n;
     BOOST_TEST(motion.clear(q0.data(), q1.data(), n) == (first > n));
+    BOOST_TEST(motion.clear(q0.data(), q1.data(), n, nullptr, dss::MotionOrder::kEndLast) ==
+               (first > n));
     double last = -1.0;
     BOOST_TEST(motion.clear(q0.data(), q1.data(), n, &last) == (first > n));
     if (first <= n) BOOST_TEST(last == double(first - 1) / double(n));
@@ -281,8 +300,40 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_our_robots) {
     BOOST_TEST_MESSAGE(c.name << ": " << colliding << " of 400 motions colliding");
     BOOST_TEST(colliding > 20, c.name);
     BOOST_TEST(colliding < 380, c.name);
-    BOOST_TEST(dss::motionChecks(*ours) == 2u * 400u, c.name);  // with and without lastValid
+    BOOST_TEST(dss::motionChecks(*ours) == 3u * 400u, c.name);  // twice, and with lastValid
   }
+}
+
+BOOST_AUTO_TEST_CASE(the_validity_checker_knows_the_last_state_it_found_free) {
+  const Case c = ourCase("dss_arm7", "shelf");
+  const Case other = ourCase("dss_arm7", "shelf");
+  std::mt19937_64 rng(13);
+  const ob::StateSpacePtr& space = c.p.si->getStateSpace();
+  ob::ScopedState<> s(space), t(space), u(space);
+  // Two free states and a colliding one.
+  do randomState(c, rng, s.get());
+  while (!c.checker->isValid(s.get()));
+  do randomState(c, rng, t.get());
+  while (!c.checker->isValid(t.get()));
+  do randomState(c, rng, u.get());
+  while (c.checker->isValid(u.get()));
+  BOOST_TEST(c.checker->lastFoundFree(t.get()));  // the colliding one changed nothing
+  BOOST_TEST(!c.checker->lastFoundFree(s.get()));
+  BOOST_TEST(!c.checker->lastFoundFree(u.get()));
+  BOOST_TEST(!other.checker->lastFoundFree(t.get()));  // another adapter's record
+  BOOST_REQUIRE(c.checker->isValid(s.get()));
+  BOOST_TEST(c.checker->lastFoundFree(s.get()));
+  BOOST_TEST(!c.checker->lastFoundFree(t.get()));
+  ob::ScopedState<> s2(space);
+  s2 = s;
+  s2[0] = std::nextafter(s2[0], 10.0);  // one bit off: another state
+  BOOST_TEST(!c.checker->lastFoundFree(s2.get()));
+  // Spaces other than a plain real vector keep no record.
+  const Case flyer = ourCase("dss_free_flyer", "window");
+  ob::ScopedState<> f(flyer.p.si->getStateSpace());
+  do randomState(flyer, rng, f.get());
+  while (!flyer.checker->isValid(f.get()));
+  BOOST_TEST(!flyer.checker->lastFoundFree(f.get()));
 }
 
 BOOST_AUTO_TEST_CASE(another_validity_checker_decides_every_state) {

@@ -2,7 +2,10 @@
 // same states as OMPL's DiscreteMotionValidator (the space's validSegmentCount segments, the
 // interior states interpolated by the space, the end state itself) and the same verdicts and
 // lastValid, with the states checked in an order that finds collisions sooner when lastValid is
-// not wanted.
+// not wanted: OMPL's (the end first) for a motion towards a new state, and the end last for a
+// motion from the state the space information's validity checker (a dss::ValidityChecker) has
+// just found free, as a planner moves from a state it has just validated towards one it holds
+// (MotionOrder in discrete_motion.h).
 //
 // When the space is a plain real vector (the group has no continuous or multi-DOF joints) and
 // the space information's validity checker is a dss::ValidityChecker on the same state checker,
@@ -25,6 +28,8 @@
 
 namespace dss {
 
+class ValidityChecker;
+
 class DiscreteMotionValidator : public ompl::base::MotionValidator {
  public:
   DiscreteMotionValidator(const ompl::base::SpaceInformationPtr& si,
@@ -43,8 +48,9 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
              int* first_colliding) const;
-  /// Whether interior states can be checked in joint values (see the header).
-  bool directPath() const;
+  /// Whether interior states can be checked in joint values (see the header); `vc`: the space
+  /// information's validity checker, when it is ours.
+  bool directPath(const ValidityChecker* vc) const;
 
   std::shared_ptr<const DiscreteMotionChecker> motion_;
   std::shared_ptr<const GroupStateMap> map_;

@@ -3,8 +3,9 @@
 // FCL on the same model.
 //
 // isValid(state): a value outside the space's bounds, NaN or Inf makes the state invalid
-// (counted as invalid input); otherwise the checker's verdict. clearance(state): with a DSS
-// checker, a guaranteed lower bound within the checker's tolerance
+// (counted as invalid input); otherwise the checker's verdict. Each thread records the last
+// state it found free (plain real vector spaces of up to 16 values), for lastFoundFree().
+// clearance(state): with a DSS checker, a guaranteed lower bound within the checker's tolerance
 // (StateValidityCheckerSpecs::BOUNDED_APPROXIMATE); with FCL, none (NONE). Const and
 // thread-safe, as the checker it holds.
 #pragma once
@@ -33,6 +34,11 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
 
   const StateChecker& checker() const { return *checker_; }
   const std::shared_ptr<const StateChecker>& checkerPtr() const { return checker_; }
+  /// True when `state` has exactly the values of the last state this adapter found free on
+  /// this thread (a planner moving on from the state it has just validated; see
+  /// DiscreteMotionValidator). False for spaces other than a plain real vector of up to 16
+  /// values.
+  bool lastFoundFree(const ompl::base::State* state) const;
   /// The checker's counters, with the states this adapter refused before asking it.
   CheckerCounters counters() const;
 
@@ -40,6 +46,7 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
   std::shared_ptr<const StateChecker> checker_;
   const DssChecker* dss_ = nullptr;  ///< the checker, when it computes clearance
   std::shared_ptr<const GroupStateMap> map_;
+  std::uint64_t id_;  ///< this adapter's key in the per-thread record of the last free state
   mutable std::atomic<std::uint64_t> out_of_bounds_{0};
 };
 
