@@ -312,12 +312,11 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
               .intersect;
 }
 
-bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* last) const {
+bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* last,
+                                    MotionOrder kind) const {
   // Without a last valid fraction to report, a colliding state decides the motion at once: when
-  // the whole motion is not cleared at once, the state three quarters of the way and the end
-  // state are checked before the first midpoint, as the discrete motion check orders them
-  // (discrete_motion.h: a planner's motion mostly collides near its far end, and its end may be
-  // a state the planner already holds).
+  // the whole motion is not cleared at once, two states are checked before the first midpoint,
+  // the first two of the discrete check's order (discrete_motion.h).
   bool probe = last == nullptr;
   double last_storage = 0.0;
   if (!last) last = &last_storage;
@@ -435,15 +434,21 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
     }
     if (probe) {  // the two states (above); the pool may move: XA and XB are not used below
       probe = false;
-      const double tp = 0.75;
-      for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tp * (q1[i] - q0[i]);
-      for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tp, qa + a);
-      const int pp = sc.acquire(nl);
-      Eigen::Isometry3d* XP = sc.pool.data() + std::size_t(pp) * nl;
-      m.kinematics().computeLinkPoses(qa, XP);
-      const bool hit = checker_->collidesWithPoses(qa, XP);
-      sc.release(pp);
-      if (hit || checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl))
+      // The state at fraction tp collides (its poses computed into a pool slot released after).
+      auto collidesAt = [&](double tp) {
+        for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tp * (q1[i] - q0[i]);
+        for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tp, qa + a);
+        const int pp = sc.acquire(nl);
+        Eigen::Isometry3d* XP = sc.pool.data() + std::size_t(pp) * nl;
+        m.kinematics().computeLinkPoses(qa, XP);
+        const bool hit = checker_->collidesWithPoses(qa, XP);
+        sc.release(pp);
+        return hit;
+      };
+      if (kind == MotionOrder::kEndLast
+              ? collidesAt(0.75) || collidesAt(0.9)
+              : checker_->collidesWithPoses(q1, sc.pool.data() + std::size_t(p1) * nl) ||
+                    collidesAt(0.75))
         return false;
     }
     const double tm = 0.5 * (iv.ta + iv.tb);

@@ -161,10 +161,14 @@ void checkAgainstDenseSampling(const Arm& a, std::uint64_t seed, double scale, i
     ++made;
     double last = -1.0;
     const bool ok = cmc.clear(q0.data(), q1.data(), &last);
-    // Without a last valid fraction two states (three quarters of the way, the end) are checked
-    // before the first midpoint: the same answer.
+    // Without a last valid fraction two states are checked before the first midpoint, in either
+    // order (the end and three quarters of the way; three quarters and nine tenths): the same
+    // answer.
     const bool probed = cmc.clear(q0.data(), q1.data());
     BOOST_TEST(probed == ok, "motion " << made);
+    const bool probed_end_last =
+        cmc.clear(q0.data(), q1.data(), nullptr, dss::MotionOrder::kEndLast);
+    BOOST_TEST(probed_end_last == ok, "motion " << made);
     ends_colliding += a.checker->collides(q1.data());
     int first_bad = -1;
     std::vector<double> qt(q0.size());

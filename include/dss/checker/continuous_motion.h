@@ -43,6 +43,7 @@
 #include <memory>
 #include <vector>
 
+#include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/motion_bounds.h"
 
@@ -60,9 +61,13 @@ class ContinuousMotionChecker {
   /// Otherwise `last_valid_fraction` (optional) receives the start of the first sub-motion that
   /// could not be cleared: every state before it is free. States outside the model's bounds
   /// make the motion invalid (last valid fraction 0). Without `last_valid_fraction`, when the
-  /// whole motion is not cleared at once, the state three quarters of the way and the end state
-  /// q1 are checked before anything else: a colliding one answers at once (the same answer).
-  bool clear(const double* q0, const double* q1, double* last_valid_fraction = nullptr) const;
+  /// whole motion is not cleared at once, two states are checked before the first midpoint, as
+  /// the discrete check's `kind` order begins (discrete_motion.h): the end state q1 and the
+  /// state three quarters of the way (kEndFirst), or the states three quarters and nine tenths
+  /// of the way (kEndLast: a motion towards a state the caller holds). A colliding one answers
+  /// at once (the same answer).
+  bool clear(const double* q0, const double* q1, double* last_valid_fraction = nullptr,
+             MotionOrder kind = MotionOrder::kEndFirst) const;
 
   /// The padding of each model slot over the straight motion qa -> qb (all active joints):
   /// every point of the slot's geometry stays within pad[k] of the chord between its positions

@@ -13,7 +13,7 @@
 //    nine tenths of the way come first, then bisection. A state the caller holds is mostly in a
 //    tight spot (a goal inside a shelf, a tree grown out of one), so such a motion collides
 //    close to its end. On the MotionBenchMaker problems this order finds the collision of such
-//    a motion in 1.2 states instead of 3.6 (docs/performance.md).
+//    a motion in 1.2 states instead of 3.6 (docs/design.md#discrete-motion-check).
 //  - When the last valid state is wanted: in order from the start, stopping at the first
 //    colliding state, as OMPL does.
 //
