@@ -1,8 +1,6 @@
 // ValidityChecker: OMPL states to joint values, then the state checker (see the header).
 #include "dss/planning/validity_checker.h"
 
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-
 #include <atomic>
 #include <cstring>
 #include <vector>
@@ -16,9 +14,9 @@ double* jointScratch(std::size_t n) {
   return q.data();
 }
 
-// The last state an adapter (by id; 0: none) found free on this thread, by its values.
+// The last state an adapter (by id; 0: none) found free on this thread, by its group values.
 struct LastFree {
-  static constexpr std::size_t kMaxValues = 16;
+  static constexpr std::size_t kMaxValues = 32;
   std::uint64_t owner = 0;
   double v[kMaxValues];
 };
@@ -27,12 +25,6 @@ LastFree& lastFree() {
   return last;
 }
 std::atomic<std::uint64_t> next_id{1};
-
-// The values of a plain real vector state of n values, or null (another space, or too many).
-const double* plainValues(const GroupStateMap& map, const ompl::base::State* s) {
-  if (!map.plain() || map.dimension() > LastFree::kMaxValues) return nullptr;
-  return s->as<ompl::base::RealVectorStateSpace::StateType>()->values;
-}
 }  // namespace
 
 ValidityChecker::ValidityChecker(const ompl::base::SpaceInformationPtr& si,
@@ -56,18 +48,21 @@ bool ValidityChecker::isValid(const ompl::base::State* state) const {
     return false;
   }
   if (checker_->check(q) != StateVerdict::kFree) return false;
-  if (const double* v = plainValues(*map_, state)) {
+  if (map_->dimension() <= LastFree::kMaxValues) {
     LastFree& last = lastFree();
     last.owner = id_;
-    std::memcpy(last.v, v, map_->dimension() * sizeof(double));
+    map_->toGroupValues(state, last.v);
   }
   return true;
 }
 
 bool ValidityChecker::lastFoundFree(const ompl::base::State* state) const {
-  const double* v = plainValues(*map_, state);
+  const std::size_t n = map_->dimension();
   const LastFree& last = lastFree();
-  return v && last.owner == id_ && std::memcmp(last.v, v, map_->dimension() * sizeof(double)) == 0;
+  if (n > LastFree::kMaxValues || last.owner != id_) return false;
+  double g[LastFree::kMaxValues];
+  map_->toGroupValues(state, g);
+  return std::memcmp(last.v, g, n * sizeof(double)) == 0;
 }
 
 double ValidityChecker::clearance(const ompl::base::State* state) const {

@@ -328,12 +328,16 @@ BOOST_AUTO_TEST_CASE(the_validity_checker_knows_the_last_state_it_found_free) {
   s2 = s;
   s2[0] = std::nextafter(s2[0], 10.0);  // one bit off: another state
   BOOST_TEST(!c.checker->lastFoundFree(s2.get()));
-  // Spaces other than a plain real vector keep no record.
+  // The same in an SE(3) space (group values: position and quaternion).
   const Case flyer = ourCase("dss_free_flyer", "window");
-  ob::ScopedState<> f(flyer.p.si->getStateSpace());
+  ob::ScopedState<> f(flyer.p.si->getStateSpace()), f2(flyer.p.si->getStateSpace());
   do randomState(flyer, rng, f.get());
   while (!flyer.checker->isValid(f.get()));
+  BOOST_TEST(flyer.checker->lastFoundFree(f.get()));
+  do randomState(flyer, rng, f2.get());
+  while (!flyer.checker->isValid(f2.get()));
   BOOST_TEST(!flyer.checker->lastFoundFree(f.get()));
+  BOOST_TEST(flyer.checker->lastFoundFree(f2.get()));
 }
 
 BOOST_AUTO_TEST_CASE(another_validity_checker_decides_every_state) {

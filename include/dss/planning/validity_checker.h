@@ -3,8 +3,8 @@
 // FCL on the same model.
 //
 // isValid(state): a value outside the space's bounds, NaN or Inf makes the state invalid
-// (counted as invalid input); otherwise the checker's verdict. Each thread records the last
-// state it found free (plain real vector spaces of up to 16 values), for lastFoundFree().
+// (counted as invalid input); otherwise the checker's verdict. Each thread records the group
+// values of the last state it found free (groups of up to 32 values), for lastFoundFree().
 // clearance(state): with a DSS checker, a guaranteed lower bound within the checker's tolerance
 // (StateValidityCheckerSpecs::BOUNDED_APPROXIMATE); with FCL, none (NONE). Const and
 // thread-safe, as the checker it holds.
@@ -34,10 +34,9 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
 
   const StateChecker& checker() const { return *checker_; }
   const std::shared_ptr<const StateChecker>& checkerPtr() const { return checker_; }
-  /// True when `state` has exactly the values of the last state this adapter found free on
-  /// this thread (a planner moving on from the state it has just validated; see
-  /// DiscreteMotionValidator). False for spaces other than a plain real vector of up to 16
-  /// values.
+  /// True when `state` has exactly the group values of the last state this adapter found free
+  /// on this thread (a planner moving on from the state it has just validated; see
+  /// DiscreteMotionValidator). False for groups of more than 32 values.
   bool lastFoundFree(const ompl::base::State* state) const;
   /// The checker's counters, with the states this adapter refused before asking it.
   CheckerCounters counters() const;
