@@ -1113,10 +1113,12 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         auto checker = std::make_shared<ValidityChecker>(p.si, makeSettingChecker(vp, r.s), p.map);
         og::SimpleSetup ss(p.si);
         ss.setStateValidityChecker(checker);
-        if (r.s.resolution > 0)
+        if (r.s.resolution > 0) {  // the discrete validator, as dss_plan's default
           p.si->setStateValidityCheckingResolution(r.s.resolution);
-        else
+          p.si->setMotionValidator(makeDiscreteMotionValidator(p, *checker));
+        } else {
           p.si->setMotionValidator(makeContinuousMotionValidator(p, *checker));
+        }
         ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
         ob::ScopedState<> s0(p.si->getStateSpace());
         const std::vector<double> g0 = p.map->groupValues(ctx.start);
