@@ -432,17 +432,21 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
       *last = iv.ta;
       return false;
     }
-    if (probe) {  // the two states (above); the pool may move: XA and XB are not used below
+    // The state at fraction t into qa and its poses into a pool slot acquired for them (the
+    // pool may move: XA and XB are not used below).
+    auto posesAt = [&](double t) {
+      for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + t * (q1[i] - q0[i]);
+      for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, t, qa + a);
+      const int slot = sc.acquire(nl);
+      m.kinematics().computeLinkPoses(qa, sc.pool.data() + std::size_t(slot) * nl);
+      return slot;
+    };
+    if (probe) {  // the two states (above)
       probe = false;
-      // The state at fraction tp collides (its poses computed into a pool slot released after).
-      auto collidesAt = [&](double tp) {
-        for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tp * (q1[i] - q0[i]);
-        for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tp, qa + a);
-        const int pp = sc.acquire(nl);
-        Eigen::Isometry3d* XP = sc.pool.data() + std::size_t(pp) * nl;
-        m.kinematics().computeLinkPoses(qa, XP);
-        const bool hit = checker_->collidesWithPoses(qa, XP);
-        sc.release(pp);
+      auto collidesAt = [&](double t) {
+        const int slot = posesAt(t);
+        const bool hit = checker_->collidesWithPoses(qa, sc.pool.data() + std::size_t(slot) * nl);
+        sc.release(slot);
         return hit;
       };
       if (kind == MotionOrder::kEndLast
@@ -452,13 +456,9 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         return false;
     }
     const double tm = 0.5 * (iv.ta + iv.tb);
-    for (std::size_t i = 0; i < n; ++i) qa[i] = q0[i] + tm * (q1[i] - q0[i]);
-    for (int a : sc.turning) slerpQuaternion(q0 + a, q1 + a, tm, qa + a);
-    const int pm = sc.acquire(nl);  // may move the pool: XA and XB are not used below
-    Eigen::Isometry3d* XM = sc.pool.data() + std::size_t(pm) * nl;
-    m.kinematics().computeLinkPoses(qa, XM);
-    if (checker_->collidesWithPoses(qa, XM)) {  // a colliding state on the motion: done
-      *last = iv.ta;
+    const int pm = posesAt(tm);
+    if (checker_->collidesWithPoses(qa, sc.pool.data() + std::size_t(pm) * nl)) {
+      *last = iv.ta;  // a colliding state on the motion: done
       return false;
     }
     // The halves take over the parent's ends; the midpoint serves both.

@@ -46,11 +46,8 @@ bool ContinuousMotionValidator::check(const ompl::base::State* s1, const ompl::b
       if (j.type == JointType::kContinuous || !j.limits.has_position_limits)
         q1[a] = q0[a] + std::remainder(q1[a] - q0[a], 2.0 * M_PI);
     }
-    // A motion from the state just found valid runs towards one the planner holds.
     const auto* vc = dynamic_cast<const ValidityChecker*>(si_->getStateValidityChecker().get());
-    const MotionOrder kind =
-        vc && vc->lastFoundFree(s1) ? MotionOrder::kEndLast : MotionOrder::kEndFirst;
-    ok = motion_->clear(q0.data(), q1.data(), last, kind);
+    ok = motion_->clear(q0.data(), q1.data(), last, motionOrderFrom(vc, s1));
   } else if (last) {
     *last = 0.0;
   }

@@ -62,9 +62,7 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
   const ob::SpaceInformation& si = *si_;
   const int segments = n < 1 ? 1 : n;
   const auto* vc = dynamic_cast<const ValidityChecker*>(si.getStateValidityChecker().get());
-  // A motion from the state just found valid runs towards one the planner holds: end last.
-  const MotionOrder kind =
-      vc && vc->lastFoundFree(s1) ? MotionOrder::kEndLast : MotionOrder::kEndFirst;
+  const MotionOrder kind = motionOrderFrom(vc, s1);
   bool ok;
   if (directPath(vc)) {
     const StateChecker& checker = motion_->checker();

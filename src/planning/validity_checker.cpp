@@ -65,6 +65,10 @@ bool ValidityChecker::lastFoundFree(const ompl::base::State* state) const {
   return std::memcmp(last.v, g, n * sizeof(double)) == 0;
 }
 
+MotionOrder motionOrderFrom(const ValidityChecker* checker, const ompl::base::State* s1) {
+  return checker && checker->lastFoundFree(s1) ? MotionOrder::kEndLast : MotionOrder::kEndFirst;
+}
+
 double ValidityChecker::clearance(const ompl::base::State* state) const {
   if (!dss_) return ompl::base::StateValidityChecker::clearance(state);
   double* q = jointScratch(checker_->model().robot().numActiveJoints());

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/state_checker.h"
 #include "dss/planning/group_state_space.h"
@@ -48,5 +49,11 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
   std::uint64_t id_;  ///< this adapter's key in the per-thread record of the last free state
   mutable std::atomic<std::uint64_t> out_of_bounds_{0};
 };
+
+/// The discrete check's order (discrete_motion.h) for a motion from s1 checked under `checker`
+/// (null: a validity checker that is not ours): kEndLast when it has just found s1 free on this
+/// thread (a planner moving from the state it has just validated towards one it holds),
+/// kEndFirst otherwise. Both motion validators take their order from here.
+MotionOrder motionOrderFrom(const ValidityChecker* checker, const ompl::base::State* s1);
 
 }  // namespace dss
