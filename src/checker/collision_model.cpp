@@ -98,30 +98,23 @@ RobotModel CollisionModel::foldedRobot() const {
 }
 
 bool CollisionModel::withinBounds(const double* q) const {
-  const ValueBound* const b = bounds_.data();
-  const std::size_t n = bounds_.size();
-  for (std::size_t a = 0; a < n; ++a) {
-    const double v = q[a];
-    switch (b[a].kind) {
-      case ValueBound::kRange:
-        if (!(v >= b[a].lower && v <= b[a].upper)) return false;
-        break;
-      case ValueBound::kFrozen:
-        if (!(v == b[a].held && std::abs(v) <= b[a].upper)) return false;
-        break;
-      case ValueBound::kHeldOrRange:
-        if (!(v == b[a].held || (v >= b[a].lower && v <= b[a].upper))) return false;
-        break;
-      case ValueBound::kQuaternion: {
-        const double* r = q + a;
-        if (!(std::abs(v) <= std::numeric_limits<double>::max() &&
-              std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]) >=
-                  kMinQuaternionNorm))
-          return false;
-        break;
-      }
+  // One pass without branches over the ranges (a frozen value's range is its held value
+  // alone), then what else applies: a held value outside its joint's limits, the quaternions.
+  const double* const lo = range_lower_.data();
+  const double* const hi = range_upper_.data();
+  const std::size_t n = range_lower_.size();
+  bool in_range = true;
+  for (std::size_t a = 0; a < n; ++a) in_range &= (q[a] >= lo[a]) & (q[a] <= hi[a]);
+  if (!in_range) {
+    for (std::size_t a = 0; a < n; ++a) {
+      const ValueBound& b = bounds_[a];
+      const double v = q[a];
+      if (v >= lo[a] && v <= hi[a]) continue;
+      if (!(b.kind == ValueBound::kHeldOrRange && v == b.held)) return false;
     }
   }
+  for (const int a : quaternions_)
+    if (!quaternionNormValid(q[a], q[a + 1], q[a + 2], q[a + 3])) return false;
   return true;
 }
 
@@ -145,6 +138,25 @@ void CollisionModel::buildBounds() {
     else if (limited && !in_group_[a] && std::isfinite(held_[a]))
       b.kind = ValueBound::kHeldOrRange;
     bounds_.push_back(b);
+  }
+  range_lower_.clear();
+  range_upper_.clear();
+  quaternions_.clear();
+  for (std::size_t a = 0; a < bounds_.size(); ++a) {
+    const ValueBound& b = bounds_[a];
+    double lo = b.lower, hi = b.upper;
+    // Frozen: the held value exactly, and finite (a non-finite one admits nothing).
+    if (b.kind == ValueBound::kFrozen) {
+      lo = std::abs(b.held) <= kMax ? b.held : kMax;
+      hi = std::abs(b.held) <= kMax ? b.held : -kMax;
+    }
+    if (b.kind == ValueBound::kQuaternion) {  // finite here; the norm is tested apart
+      lo = -kMax;
+      hi = kMax;
+      quaternions_.push_back(int(a));
+    }
+    range_lower_.push_back(lo);
+    range_upper_.push_back(hi);
   }
 }
 

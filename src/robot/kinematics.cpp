@@ -465,13 +465,13 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
       case Motion::kBall: {
         // A quaternion of (nearly) zero or non-finite norm has no rotation: the pose becomes
         // NaN, which every checker answers as invalid input. Otherwise the rotation of the
-        // quaternion scaled to unit norm, from its squared norm n2 (one division, and the
-        // square root only for the test, off the path to the pose).
+        // quaternion scaled to unit norm, from its squared norm n2 (one division, no square
+        // root).
         const double x = q[s.q_index], y = q[s.q_index + 1], z = q[s.q_index + 2],
                      w = q[s.q_index + 3];
         const double n2 = x * x + y * y + z * z + w * w;
         Eigen::Matrix3d M;
-        if (std::sqrt(n2) >= kMinQuaternionNorm && n2 <= std::numeric_limits<double>::max()) {
+        if (quaternionNormValid(x, y, z, w)) {
           const double f = 2.0 / n2;
           const double fx = f * x, fy = f * y, fz = f * z;
           const double xx = fx * x, yy = fy * y, zz = fz * z, xy = fx * y, xz = fx * z, yz = fy * z,

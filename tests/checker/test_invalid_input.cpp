@@ -144,6 +144,21 @@ BOOST_AUTO_TEST_CASE(within_bounds_refuses_a_quaternion_without_direction) {
   BOOST_TEST(!m.withinBounds(q.data()));
   q[w] = 1e-7;
   BOOST_TEST(!m.withinBounds(q.data()));
+  q[w] = 2e-6;  // small but above the smallest norm
+  BOOST_TEST(m.withinBounds(q.data()));
+  // Non-finite components are out, and so is a squared norm that overflows.
+  for (double bad : {kInf, -kInf, kNan}) {
+    q[w] = bad;
+    BOOST_TEST(!m.withinBounds(q.data()), "rot_w " << bad);
+    q[w] = 1.0;
+    q[3] = bad;
+    BOOST_TEST(!m.withinBounds(q.data()), "rot_x " << bad);
+    q[3] = 0.0;
+  }
+  q[3] = 1e200;
+  BOOST_TEST(!m.withinBounds(q.data()));
+  q[3] = 0.0;
+  q[w] = 1e-7;
   const dss::DssChecker c(std::make_shared<const dss::CollisionModel>(
       r.model, &*r.srdf, dss::Scene{}, std::vector<int>{}, held));
   BOOST_TEST((c.check(q.data()) == dss::StateVerdict::kInvalidInput));

@@ -208,6 +208,8 @@ class CollisionModel {
     Kind kind;
   };
   std::vector<ValueBound> bounds_;
+  std::vector<double> range_lower_, range_upper_;  ///< per value, as bounds_ (frozen: held)
+  std::vector<int> quaternions_;                   ///< the first value of each quaternion
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;

@@ -24,6 +24,13 @@ namespace dss {
 /// A state whose quaternion has a smaller norm is invalid (its rotation is undefined).
 inline constexpr double kMinQuaternionNorm = 1e-6;
 
+/// Whether the quaternion (x, y, z, w) has a norm of at least kMinQuaternionNorm and a finite
+/// squared norm (tested on the squared norm, without a square root).
+inline bool quaternionNormValid(double x, double y, double z, double w) {
+  const double n2 = x * x + y * y + z * z + w * w;
+  return n2 >= kMinQuaternionNorm * kMinQuaternionNorm && n2 <= 1.7976931348623157e308;
+}
+
 /// Replaces each listed joint (given by index; a placeholder of type kFixed without variables)
 /// by the chain of one-variable joints of its type, renumbering links, joints and active
 /// indices (mimic joints keep their leaders). `source` names the file for errors (a name
