@@ -267,14 +267,26 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& loaded_robot,
   for (const auto& w : p.warnings)
     std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
   lp.start = p.map->groupValues(start);
-  for (const auto& gc : req.goals) {
+  for (std::size_t g = 0; g < req.goals.size(); ++g) {
     std::map<std::string, double> by_name = start;
-    for (const auto& jc : gc.joint_constraints) {
+    std::set<std::string> named;
+    for (const auto& jc : req.goals[g].joint_constraints) {
       by_name[jc.joint_name] = jc.position;
+      named.insert(jc.joint_name);
       if (jc.tolerance_above != 0.0 || jc.tolerance_below != 0.0)
         std::cerr << "dss_plan: " << files.name << ": note: goal tolerances of " << jc.joint_name
                   << " ignored (the goal is the constraint's position)\n";
     }
+    // Group values the goal does not name keep their start values: said, not assumed silently.
+    std::string kept;
+    std::size_t num_kept = 0;
+    for (const auto& n : p.map->jointNames())
+      if (!named.count(n)) kept += (num_kept++ ? ", " : "") + n;
+    if (num_kept > 0)
+      std::cerr << "dss_plan: " << files.name << ": note: goal_constraints[" << g
+                << "] does not name " << num_kept << " of the group's "
+                << p.map->jointNames().size() << " values; they keep their start values: " << kept
+                << "\n";
     lp.goals.push_back(p.map->groupValues(by_name));
   }
   if (req.goals.empty()) throw std::runtime_error(files.request + ": no goal constraints");

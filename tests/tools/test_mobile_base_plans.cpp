@@ -122,6 +122,35 @@ BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path
   BOOST_TEST(c.out.find('1') != std::string::npos, c.out);
 }
 
+// A goal that names only some of the group's values (here the arm's, not the base's) keeps
+// the others at their start values, and dss_plan says so; a goal naming them all gets no note.
+BOOST_AUTO_TEST_CASE(goal_values_not_named_keep_their_start_values_with_a_note) {
+  const std::string d = kRobots + "/dss_mobile_base";
+  std::ifstream in(d + "/scenes/aisle_request.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string request = text.str();
+  // Drop the base's three goal constraints.
+  for (const char* name : {"base/x", "base/y", "base/theta"}) {
+    const std::size_t at = request.find("      - joint_name: " + std::string(name) + "\n");
+    BOOST_REQUIRE(at != std::string::npos);
+    const std::size_t end = request.find("      - joint_name:", at + 1);
+    BOOST_REQUIRE(end != std::string::npos);
+    request.erase(at, end - at);
+  }
+  const std::string file = dss_test::writeScratch("tools", "arm_goal_request.yaml", request);
+  std::vector<std::string> args = problem("dss_mobile_base", "aisle");
+  args[7] = file;  // --request
+  const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("goal_constraints[0] does not name 3 of the group's 5 values; they keep "
+                        "their start values: base/x, base/y, base/theta") != std::string::npos,
+             r.err);
+  const dss_test::ToolRun full = dss_test::runTool("dss_plan", problem("dss_mobile_base", "aisle"));
+  BOOST_TEST(full.exit_code == 0, full.err);
+  BOOST_TEST(full.err.find("does not name") == std::string::npos, full.err);
+}
+
 BOOST_AUTO_TEST_CASE(a_floating_group_without_bounds_is_refused_clearly) {
   // No request: no workspace_parameters, and no --workspace.
   const std::string d = kRobots + "/dss_free_flyer";
