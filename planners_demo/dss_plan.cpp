@@ -52,6 +52,7 @@
 
 #include "benchmark_log.h"
 #include "cli.h"
+#include "dss/checker/contacts.h"
 #include "dss/core/simd_path.h"
 #include "dss/planning/continuous_motion_validator.h"
 #include "dss/planning/planning_problem.h"
@@ -202,6 +203,32 @@ dss::CheckerConfig checkerConfig(const Args& a, const std::string& name) {
   cfg.self_padding = a.self_padding;
   cfg.dss_options = a.dss_options;
   return cfg;
+}
+
+// Why a state a checker finds invalid is: a value outside its bounds, or the pairs that
+// collide there (exact DSS on the problem's model with the run's paddings; three named).
+std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s) {
+  std::vector<double> q(p.model->robot().numActiveJoints());
+  if (!p.map->toJoints(s, q.data())) return "a value is not finite or outside its bounds";
+  dss::DssCheckerSettings set;
+  set.scene_padding = a.padding;
+  set.self_padding = a.self_padding;
+  const dss::DssChecker dss_checker(p.model, set);
+  const auto contacts = dss::contactsAt(dss_checker, q.data());
+  if (!contacts) return "a value is outside the model's bounds";
+  if (contacts->empty()) return "no pair collides under exact DSS";
+  std::string out;
+  bool hull = false;
+  for (std::size_t k = 0; k < contacts->size(); ++k) {
+    hull |= dss::involvesMeshHull(*p.model, (*contacts)[k]);
+    if (k < 3) out += (k ? "; " : "") + dss::describeContact(*p.model, (*contacts)[k]);
+  }
+  if (contacts->size() > 3) out += "; and " + std::to_string(contacts->size() - 3) + " more";
+  if (hull)
+    out +=
+        " (meshes are checked as their convex hulls; for a concave link, --meshes decomposed "
+        "follows the mesh more closely)";
+  return out;
 }
 
 struct Outcome {
@@ -388,6 +415,12 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
+  if (!start_valid)
+    std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
+              << checker->checker().name() << ": " << whyInvalid(a, p, s0) << "\n";
+  if (!goal_valid)
+    std::cerr << "dss_plan: " << files.name << ": warning: goal state invalid under "
+              << checker->checker().name() << ": " << whyInvalid(a, p, g0) << "\n";
   const dss::CheckerCounters counters0 = checker->counters();
   if (timed) timed->reset();
 
@@ -549,14 +582,16 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     else if (a.motion == "discrete")  // states decided by the switching checker, in our order
       p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checkers.front()));
     for (const auto& c : checkers) {
-      if (!c->isValid(ss.getProblemDefinition()->getStartState(0)))
-        std::cerr << "dss_plan: " << files.name << ": warning: start state in collision under "
-                  << c->checker().name() << "\n";
+      const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
+      if (!c->isValid(s0))
+        std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
+                  << c->checker().name() << ": " << whyInvalid(a, p, s0) << "\n";
       const auto* goals = ss.getGoal()->as<ob::GoalStates>();
       for (std::size_t g = 0; g < goals->getStateCount(); ++g)
         if (!c->isValid(goals->getState(g)))
           std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g
-                    << " in collision under " << c->checker().name() << "\n";
+                    << " invalid under " << c->checker().name() << ": "
+                    << whyInvalid(a, p, goals->getState(g)) << "\n";
     }
 
     InterleavedBenchmark b(ss, files.name);

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "cli.h"
+#include "dss/checker/contacts.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/core/simd_path.h"
 #include "dss/planning/planning_problem.h"
@@ -38,7 +39,7 @@ const char* kUsage =
     "                 (--states FILE.csv | --random N [--seed S])\n"
     "                 [--checker dss|fcl-hull|fcl-mesh[:sweep][,...]] [--padding r] "
     "[--self-padding r]\n"
-    "                 [--repeat K] [--describe]\n"
+    "                 [--repeat K] [--describe] [--contacts]\n"
     "                 [--mode exact|double|float] [--no-obb-stage] [--threads N]\n"
     "                 [--workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]  (bounds of planar and\n"
     "                 floating joints' translation; needed when the group moves one)\n"
@@ -46,6 +47,8 @@ const char* kUsage =
     "                 most about N cells, 0 for none; default 65536)\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
+    "  --contacts: each line of a state the first checker calls colliding also names the\n"
+    "  pairs that collide there (exact DSS with the same paddings), after a tab\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
     "robot meshes:\n";
 
@@ -152,6 +155,7 @@ int run(int argc, char** argv) {
   unsigned long seed = 1;
   int repeat = 0;
   bool do_describe = false;
+  bool contacts = false;
   std::string mode = "exact";
   bool box_stage = true;
   int threads = 1;
@@ -187,6 +191,8 @@ int run(int argc, char** argv) {
       repeat = static_cast<int>(cli.integer(0, kMaxCount));
     else if (cli.flag("--describe"))
       do_describe = true;
+    else if (cli.flag("--contacts"))
+      contacts = true;
     else if (cli.option("--mode")) {
       mode = cli.value();
       if (mode != "exact" && mode != "double" && mode != "float")
@@ -380,7 +386,26 @@ int run(int argc, char** argv) {
       j["prefilter"] = f->prefilterName();
     }
     if (k == 0) {
-      for (char v : valid[0]) std::cout << (v ? 1 : 0) << "\n";
+      // --contacts: the colliding pairs by exact DSS at the same paddings.
+      dss::DssCheckerSettings set;
+      set.scene_padding = padding;
+      set.self_padding = self_padding;
+      const dss::DssChecker explain(p.model, set);
+      for (std::size_t i = 0; i < st.size(); ++i) {
+        std::cout << (valid[0][i] ? 1 : 0);
+        if (contacts && !valid[0][i]) {
+          const auto c = dss::contactsAt(explain, st[i].data());
+          std::string line;
+          if (!c)
+            line = "invalid input (a value outside the model's bounds)";
+          else if (c->empty())
+            line = "no pair collides under exact DSS";
+          for (std::size_t n = 0; c && n < c->size(); ++n)
+            line += (n ? "; " : "") + dss::describeContact(*p.model, (*c)[n]);
+          std::cout << '\t' << line;
+        }
+        std::cout << "\n";
+      }
     } else {
       std::size_t dis = 0;
       for (std::size_t i = 0; i < valid[k].size(); ++i) dis += valid[k][i] != valid[0][i];

@@ -50,4 +50,12 @@ inline ToolRun runTool(const std::string& name, const std::vector<std::string>& 
   return r;
 }
 
+/// The lines of a tool's output, without their line ends.
+inline std::vector<std::string> outputLines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
 }  // namespace dss_test

@@ -24,12 +24,6 @@ fs::path scratch(const std::string& name) {
   return d / name;
 }
 
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(robot_states)
@@ -46,7 +40,7 @@ BOOST_AUTO_TEST_CASE(a_planned_path_reads_back_into_dss_check) {
       "dss_check", {"--robot", kArm + "dss_arm7.urdf", "--srdf", kArm + "dss_arm7.srdf", "--scene",
                     kArm + "scenes/shelf.yaml", "--states", path, "--checker", "dss,fcl-hull"});
   BOOST_REQUIRE_MESSAGE(check.exit_code == 0, check.err);
-  const auto answers = lines(check.out);
+  const auto answers = dss_test::outputLines(check.out);
   BOOST_TEST(answers.size() >= 2u);
   for (const std::string& a : answers)
     BOOST_TEST(a == "1");  // every waypoint of a solution is free
@@ -75,7 +69,7 @@ BOOST_AUTO_TEST_CASE(full_panda_states_with_finger_columns, DSS_NEEDS_SHARED) {
       "--checker", "dss,fcl-mesh"};
   const auto check = dss_test::runTool("dss_check", args);
   BOOST_REQUIRE_MESSAGE(check.exit_code == 0, check.err);
-  for (const std::string& a : lines(check.out)) BOOST_TEST(a == "1");
+  for (const std::string& a : dss_test::outputLines(check.out)) BOOST_TEST(a == "1");
   BOOST_TEST(check.err.find("panda_finger_joint1 has values in") != std::string::npos, check.err);
   BOOST_TEST(check.err.find("\"disagreements\":0") != std::string::npos, check.err);
 
