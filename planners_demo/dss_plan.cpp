@@ -206,15 +206,14 @@ dss::CheckerConfig checkerConfig(const Args& a, const std::string& name) {
 }
 
 // Why a state a checker finds invalid is: a value outside its bounds, or the pairs that
-// collide there (exact DSS on the problem's model with the run's paddings; three named).
-std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s) {
-  std::vector<double> q(p.model->robot().numActiveJoints());
-  if (!p.map->toJoints(s, q.data())) return "a value is not finite or outside its bounds";
+// collide there (exact DSS on the problem's model with the run's paddings; three named), with
+// a hint when a mesh checked as its hull is involved (`hint`).
+std::string whyInvalid(const Args& a, const dss::Problem& p, const double* q, bool hint = true) {
   dss::DssCheckerSettings set;
   set.scene_padding = a.padding;
   set.self_padding = a.self_padding;
   const dss::DssChecker dss_checker(p.model, set);
-  const auto contacts = dss::contactsAt(dss_checker, q.data());
+  const auto contacts = dss::contactsAt(dss_checker, q);
   if (!contacts) return "a value is outside the model's bounds";
   if (contacts->empty()) return "no pair collides under exact DSS";
   std::string out;
@@ -224,11 +223,17 @@ std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s)
     if (k < 3) out += (k ? "; " : "") + dss::describeContact(*p.model, (*contacts)[k]);
   }
   if (contacts->size() > 3) out += "; and " + std::to_string(contacts->size() - 3) + " more";
-  if (hull)
+  if (hull && hint)
     out +=
         " (meshes are checked as their convex hulls; for a concave link, --meshes decomposed "
         "follows the mesh more closely)";
   return out;
+}
+
+std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s) {
+  std::vector<double> q(p.model->robot().numActiveJoints());
+  if (!p.map->toJoints(s, q.data())) return "a value is not finite or outside its bounds";
+  return whyInvalid(a, p, q.data());
 }
 
 struct Outcome {
@@ -368,6 +373,8 @@ void writeRender(const Args& a, const LoadedProblem& lp, const dss::ValidityChec
   page.model = lp.p.model.get();
   page.loaded_scene = &lp.scene;
   page.replay = &replay;
+  for (const auto& q : replay.span_first_q)
+    page.span_causes.push_back(whyInvalid(a, lp.p, q.data(), false));
   const std::string file = perProblemFile(a.render, ".html", files, !a.problems.empty());
   std::vector<std::string> notes;
   dss_plan::writeRenderHtml(file, page, &notes);

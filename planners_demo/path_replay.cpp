@@ -37,10 +37,12 @@ PathReplay replayPath(const dss::Problem& problem, const ob::StateValidityChecke
     ++r.samples_invalid;
     const double t0 = std::max(0.0, t - half), t1 = std::min(t_end, t + half);
     // Neighbouring samples' stretches meet (up to rounding): one stretch.
-    if (!r.invalid_spans.empty() && t0 <= r.invalid_spans.back().second + 1e-9)
+    if (!r.invalid_spans.empty() && t0 <= r.invalid_spans.back().second + 1e-9) {
       r.invalid_spans.back().second = std::max(r.invalid_spans.back().second, t1);
-    else
+    } else {
       r.invalid_spans.emplace_back(t0, t1);
+      r.span_first_q.push_back(joints(s));
+    }
   };
 
   ob::ScopedState<> scoped(space);

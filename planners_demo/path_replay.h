@@ -29,6 +29,8 @@ struct PathReplay {
   std::size_t samples_invalid = 0;
   /// Stretches [t0, t1] of the path nearest to an invalid sample (merged, increasing).
   std::vector<std::pair<double, double>> invalid_spans;
+  /// For each stretch, every active joint value of its first invalid sample.
+  std::vector<std::vector<double>> span_first_q;
 };
 
 /// Samples `path` (at least one state) of `problem` and checks every sample with `checker`.

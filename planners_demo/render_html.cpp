@@ -255,6 +255,9 @@ std::string renderHtml(const RenderPage& page, std::vector<std::string>* notes_o
   d["samplesChecked"] = replay.samples_checked;
   d["samplesInvalid"] = replay.samples_invalid;
   d["invalidSpans"] = std::move(spans);
+  if (!page.span_causes.empty() && page.span_causes.size() != replay.invalid_spans.size())
+    throw std::invalid_argument("renderHtml: one cause per invalid stretch, or none");
+  d["invalidCauses"] = page.span_causes;
   d["notes"] = notes;
   // '<' only occurs inside JSON strings: as \u003c it cannot end the script element.
   std::string data;

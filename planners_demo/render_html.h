@@ -7,7 +7,8 @@
 // w, x, y, z); each frame of the replay (path_replay.h) stores the pose of every link with
 // geometry (float32, base64), so an element is drawn at X_WL(t) * X_LS. Obstacles the
 // collision model kept are drawn solid, those it pruned (no moving link reaches them) greyed
-// and translucent; the stretches of path where the checker found states invalid are red.
+// and translucent; the stretches of path where the checker found states invalid are red, each
+// listed with its cause when the caller gives one.
 // Triangles face outwards (every shape is convex); a flat hull is drawn as its outline polygon
 // from both sides; a hull with no area (points on a line) cannot be drawn: it is listed in the
 // page's notes and returned to the caller.
@@ -31,6 +32,9 @@ struct RenderPage {
   /// The scene as loaded, before the model pruned it (frames may be unresolved).
   const dss::Scene* loaded_scene = nullptr;
   const PathReplay* replay = nullptr;
+  /// Why each invalid stretch of the replay is invalid (one line each, e.g. the colliding
+  /// pairs at its first invalid sample), or empty.
+  std::vector<std::string> span_causes;
 };
 
 /// The page; `notes` (optional) receives what it could not draw, one line each. Throws

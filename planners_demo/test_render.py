@@ -189,6 +189,13 @@ def html_mode(dss_plan, source_dir, work):
     check(not d["solved"] and d["samplesInvalid"] > 0 and len(d["invalidSpans"]) > 0,
           "an unsolvable problem: %d of %d checked states invalid, in %d stretches"
           % (d["samplesInvalid"], d["samplesChecked"], len(d["invalidSpans"])))
+    # Each stretch with its cause: the colliding pairs at its first invalid state, which the
+    # arm's reach into the shelf makes a link against a shelf board.
+    causes = d.get("invalidCauses", [])
+    check(len(causes) == len(d["invalidSpans"]) and
+          all(c.startswith("link ") and " with " in c for c in causes) and
+          any("scene object 'shelf_" in c for c in causes),
+          "each invalid stretch names its colliding pairs (%s)" % causes[:3])
 
     # Errors: an unwritable file (runtime error, exit 1, naming it); with --benchmark (usage).
     missing = os.path.join(work, "no_such_dir", "plan.html")
