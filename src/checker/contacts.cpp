@@ -49,8 +49,15 @@ std::string elementName(const CollisionModel& m, int e) {
   const CollisionModel::Element& el = m.elements()[std::size_t(e)];
   const RobotLink& link = m.robot().links[std::size_t(el.link)];
   std::string s = "link " + link.name;
-  for (std::size_t k = 0; k < link.collisions.size(); ++k)
-    if (&link.collisions[k] == el.source) s += " collision[" + std::to_string(k) + "]";
+  // The file's collision index, from the element's description ("link 'L' collision[i] ...":
+  // the pieces of a decomposed mesh share theirs), else its place in the link.
+  const std::string& d = el.source->description;
+  const std::size_t at = d.find("collision["), end = d.find(']', at);
+  if (at != std::string::npos && end != std::string::npos)
+    s += " " + d.substr(at, end + 1 - at);
+  else
+    for (std::size_t k = 0; k < link.collisions.size(); ++k)
+      if (&link.collisions[k] == el.source) s += " collision[" + std::to_string(k) + "]";
   if (!el.source->mesh_path.empty())
     s += el.source->piece >= 0 ? " (mesh piece " + std::to_string(el.source->piece + 1) + " of " +
                                      std::to_string(el.source->pieces) + ")"
