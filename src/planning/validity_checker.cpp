@@ -76,6 +76,14 @@ double ValidityChecker::clearance(const ompl::base::State* state) const {
   return dss_->clearance(q);
 }
 
+std::optional<std::vector<Contact>> ValidityChecker::contacts(
+    const ompl::base::State* state) const {
+  if (!dss_) return std::nullopt;
+  std::vector<double> q(checker_->model().robot().numActiveJoints());
+  if (!map_->toJoints(state, q.data())) return std::nullopt;
+  return contactsAt(*dss_, q.data());
+}
+
 CheckerCounters ValidityChecker::counters() const {
   CheckerCounters c = checker_->counters();
   const std::uint64_t n = out_of_bounds_.load(std::memory_order_relaxed);

@@ -14,6 +14,7 @@
 #include <limits>
 #include <random>
 
+#include "dss/checker/contacts.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/planning/planning_problem.h"
 #include "dss/scene/plan_request.h"
@@ -223,6 +224,39 @@ BOOST_AUTO_TEST_CASE(clearance_is_the_dss_checkers) {
   g[0] = std::numeric_limits<double>::quiet_NaN();
   p.map->fromGroupValues(g.data(), s.get());
   BOOST_TEST(c->clearance(s.get()) == 0.0);
+}
+
+// contacts(): the DSS checker's colliding pairs at the mapped joint values, empty exactly for
+// the states isValid() accepts; none with FCL or for a state outside the bounds.
+BOOST_AUTO_TEST_CASE(contacts_are_the_dss_checkers) {
+  const auto r = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
+  const dss::Problem p = shelfProblem(r);
+  auto c = dss::makeValidityChecker(p, {"dss"});
+  auto fcl = dss::makeValidityChecker(p, {"fcl-hull"});
+  const auto* dss_checker = dynamic_cast<const dss::DssChecker*>(&c->checker());
+  BOOST_REQUIRE(dss_checker);
+  std::mt19937_64 rng(21);
+  ob::ScopedState<> s(p.si->getStateSpace());
+  std::vector<double> q(r.model->numActiveJoints());
+  int colliding = 0;
+  for (int k = 0; k < 300; ++k) {
+    const auto g = randomGroupValues(p, rng);
+    p.map->fromGroupValues(g.data(), s.get());
+    BOOST_REQUIRE(p.map->toJoints(s.get(), q.data()));
+    const auto got = c->contacts(s.get());
+    BOOST_REQUIRE(got.has_value());
+    BOOST_TEST(got->empty() == c->isValid(s.get()));
+    const auto expected = dss::contactsAt(*dss_checker, q.data());
+    BOOST_REQUIRE(expected.has_value());
+    BOOST_TEST(got->size() == expected->size());
+    colliding += !got->empty();
+    BOOST_TEST(!fcl->contacts(s.get()).has_value());
+  }
+  BOOST_TEST(colliding > 0);
+  auto g = randomGroupValues(p, rng);
+  g[0] = std::numeric_limits<double>::quiet_NaN();
+  p.map->fromGroupValues(g.data(), s.get());
+  BOOST_TEST(!c->contacts(s.get()).has_value());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -6,8 +6,8 @@
 // (counted as invalid input); otherwise the checker's verdict. Each thread records the group
 // values of the last state it found free (groups of up to 32 values), for lastFoundFree().
 // clearance(state): with a DSS checker, a guaranteed lower bound within the checker's tolerance
-// (StateValidityCheckerSpecs::BOUNDED_APPROXIMATE); with FCL, none (NONE). Const and
-// thread-safe, as the checker it holds.
+// (StateValidityCheckerSpecs::BOUNDED_APPROXIMATE); with FCL, none (NONE). contacts(state):
+// with a DSS checker, the pairs colliding there. Const and thread-safe, as the checker it holds.
 #pragma once
 
 #include <ompl/base/StateValidityChecker.h>
@@ -15,7 +15,10 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <vector>
 
+#include "dss/checker/contacts.h"
 #include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/state_checker.h"
@@ -32,6 +35,10 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
   bool isValid(const ompl::base::State* state) const override;
   /// 0 for an invalid state; see the header for what is computed.
   double clearance(const ompl::base::State* state) const override;
+  /// With a DSS checker, the pairs that collide at `state` (dss/checker/contacts.h: empty for
+  /// a free state; name them with describeContact(checker().model(), c)); nullopt for a state
+  /// outside the bounds, or with another checker. A diagnostic: it allocates.
+  std::optional<std::vector<Contact>> contacts(const ompl::base::State* state) const;
 
   const StateChecker& checker() const { return *checker_; }
   const std::shared_ptr<const StateChecker>& checkerPtr() const { return checker_; }
