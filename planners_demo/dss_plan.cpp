@@ -230,10 +230,10 @@ std::string whyInvalid(const Args& a, const dss::Problem& p, const double* q, bo
   return out;
 }
 
-std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s) {
+std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s, bool hint = true) {
   std::vector<double> q(p.model->robot().numActiveJoints());
   if (!p.map->toJoints(s, q.data())) return "a value is not finite or outside its bounds";
-  return whyInvalid(a, p, q.data());
+  return whyInvalid(a, p, q.data(), hint);
 }
 
 struct Outcome {
@@ -422,6 +422,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
+  const std::string start_why = start_valid ? "" : whyInvalid(a, p, s0, false);
+  const std::string goal_why = goal_valid ? "" : whyInvalid(a, p, g0, false);
   if (!start_valid)
     std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
               << checker->checker().name() << ": " << whyInvalid(a, p, s0) << "\n";
@@ -484,8 +486,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
-  if (!start_valid) j["start_invalid"] = true;
-  if (!goal_valid) j["goal_invalid"] = true;
+  if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why;
+  if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why;
   std::cout << j.dump() << std::endl;
   if (readable) {
     std::cout << "\n"

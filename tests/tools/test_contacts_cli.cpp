@@ -76,6 +76,7 @@ BOOST_AUTO_TEST_CASE(dss_plan_names_the_pairs_of_a_goal_in_collision) {
                    "--scene", d + "/scenes/window.yaml", "--request", file, "--time", "0.2"});
   BOOST_TEST(r.exit_code == 3, r.err);  // not solved
   BOOST_TEST(r.out.find("\"goal_invalid\":true") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("\"goal_invalid_why\":\"link body collision[") != std::string::npos, r.out);
   BOOST_TEST(r.err.find("goal state invalid under dss: link body collision[") != std::string::npos,
              r.err);
   BOOST_TEST(r.err.find("with scene object 'middle_wall/") != std::string::npos, r.err);
