@@ -270,6 +270,12 @@ bool ContinuousMotionChecker::unitClear(const Unit& u, const Eigen::Isometry3d* 
   // Sphere centres in F at both ends (F's inverse computed once per sub-motion), then the
   // shape poses in F for the stages after the spheres.
   const ElementSweep& sb = swept(u.b);
+  // Both swept spheres in the world first (computed once per element and sub-motion): apart,
+  // the pair is apart at every instant, whatever moves it.
+  {
+    const double rw = sa.reach + sb.reach + set.self_padding;
+    if ((sa.mid - sb.mid).squaredNorm() > rw * rw) return true;
+  }
   const Eigen::Isometry3d* F0 = nullptr;
   const Eigen::Isometry3d* F1 = nullptr;
   if (f.frame >= 0) {
