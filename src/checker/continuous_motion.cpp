@@ -417,6 +417,20 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         }
         if (base_along & base_bit) continue;
       }
+      // The two most frequent answers without the call, from sweeps already computed in this
+      // sub-motion: an element the clearance grid has cleared, and a self pair whose world
+      // swept spheres are apart (unitClear's first tests).
+      if (!unit.self) {
+        const ElementSweep& e = sc.sweeps[std::size_t(unit.a)];
+        if (e.stamp == sc.stamp && e.grid == 1) continue;
+      } else {
+        const ElementSweep& a = sc.sweeps[std::size_t(unit.a)];
+        const ElementSweep& b = sc.sweeps[std::size_t(unit.b)];
+        if (a.stamp == sc.stamp && b.stamp == sc.stamp) {
+          const double rw = a.reach + b.reach + checker_->settings().self_padding;
+          if ((a.mid - b.mid).squaredNorm() > rw * rw) continue;
+        }
+      }
       if (unitClear(unit, XA, XB, may_defer, &tests)) continue;  // cleared for [ta, tb]
       // The first unit not cleared decides that [ta, tb] is split: it goes first in the
       // halves' list (near a contact it fails again at once), followed by the units not yet
