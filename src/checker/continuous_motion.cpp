@@ -145,7 +145,7 @@ ContinuousMotionChecker::ContinuousMotionChecker(std::shared_ptr<const DssChecke
   for (const auto& s : m.slots()) {
     if (!s.moves) continue;
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
-      for (int o : s.obstacles) units_.push_back({e, o, false});
+      for (int o : s.obstacles) units_.push_back({e, o, false, -1, -1, s.base_bit});
   }
   const RobotModel& robot = m.robot();
   std::vector<char> computed(robot.links.size(), 0);
@@ -408,8 +408,7 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         if (sc.free_along[std::size_t(unit.table)]) continue;  // certified over [ta, tb]
       }
       // A planar base's link certified free in every table cell the sub-motion crosses.
-      const std::uint8_t base_bit =
-          unit.self ? 0 : m.slots()[std::size_t(m.elements()[std::size_t(unit.a)].slot)].base_bit;
+      const std::uint8_t base_bit = unit.base_bit;
       if (base_bit) {
         if (!base_read) {
           base_along = m.baseTable().freeAlong(qa, qb, checker_->settings().scene_padding);
@@ -417,12 +416,18 @@ bool ContinuousMotionChecker::clear(const double* q0, const double* q1, double* 
         }
         if (base_along & base_bit) continue;
       }
-      // The two most frequent answers without the call, from sweeps already computed in this
-      // sub-motion: an element the clearance grid has cleared, and a self pair whose world
-      // swept spheres are apart (unitClear's first tests).
+      // The most frequent answers without the call, from sweeps already computed in this
+      // sub-motion: an element the clearance grid has cleared or whose swept sphere misses the
+      // obstacle's box, and a self pair whose world swept spheres are apart (unitClear's first
+      // tests).
       if (!unit.self) {
         const ElementSweep& e = sc.sweeps[std::size_t(unit.a)];
-        if (e.stamp == sc.stamp && e.grid == 1) continue;
+        if (e.stamp == sc.stamp && e.grid >= 0) {
+          if (e.grid == 1) continue;
+          const double r = e.reach + checker_->settings().scene_padding;
+          if (detail::sqDistPointAabb(e.mid, m.obstacleBoxes()[std::size_t(unit.b)]) > r * r)
+            continue;
+        }
       } else {
         const ElementSweep& a = sc.sweeps[std::size_t(unit.a)];
         const ElementSweep& b = sc.sweeps[std::size_t(unit.b)];

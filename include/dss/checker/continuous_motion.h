@@ -85,8 +85,9 @@ class ContinuousMotionChecker {
   struct Unit {
     int a = -1, b = -1;
     bool self = false;
-    int table = -1;  ///< self: the pair's self-pair table, or -1
-    int pair = -1;   ///< self: index into pairs_
+    int table = -1;             ///< self: the pair's self-pair table, or -1
+    int pair = -1;              ///< self: index into pairs_
+    std::uint8_t base_bit = 0;  ///< scene: the element's slot's bit in the base-scene table
   };
   // A self pair of slots, seen from the lowest link above both whose pose the kinematics
   // compute (`frame`; -1: the world, when that link never moves): only the joints between it
