@@ -17,7 +17,6 @@
 #include <fstream>
 #include <random>
 #include <regex>
-#include <sstream>
 
 #include "dss/checker/dss_checker.h"
 #include "dss/planning/continuous_motion_validator.h"
@@ -27,23 +26,18 @@
 #include "dss/robot/urdf_loader.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/placed_robot.h"
 #include "support/shared_data.h"
+#include "support/space_sampling_checks.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
 namespace {
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // The Panda's SRDF with one more group: its floating virtual joint and the arm.
 std::string floatingArmSrdf() {
-  const std::string srdf = readText(dss_test::sharedPath("robots/panda/panda.srdf"));
+  const std::string srdf = dss_test::readText(dss_test::sharedPath("robots/panda/panda.srdf"));
   const std::regex vj("(<virtual_joint[^>]*name=\"virtual_joint\"[^>]*type=\"floating\"[^>]*/>)");
   BOOST_REQUIRE(std::regex_search(srdf, vj));
   return std::regex_replace(srdf, vj,
@@ -109,9 +103,9 @@ BOOST_AUTO_TEST_CASE(a_floating_base_answers_as_a_fixed_joint_placing_it, DSS_NE
   const FloatingPanda f;
   const dss::RobotModel& m = *f.robot.model;
   const std::string dir = dss_test::sharedPath("robots/panda");
-  const std::string urdf = readText(dir + "/panda.urdf");
+  const std::string urdf = dss_test::readText(dir + "/panda.urdf");
   const std::string fixed_srdf = std::regex_replace(
-      readText(dir + "/panda.srdf"), std::regex("type=\"floating\""), "type=\"fixed\"");
+      dss_test::readText(dir + "/panda.srdf"), std::regex("type=\"floating\""), "type=\"fixed\"");
   const dss::DssChecker floating(f.problem.model);
   const char* names[7] = {"virtual_joint/trans_x", "virtual_joint/trans_y", "virtual_joint/trans_z",
                           "virtual_joint/rot_x",   "virtual_joint/rot_y",   "virtual_joint/rot_z",
@@ -141,35 +135,16 @@ BOOST_AUTO_TEST_CASE(a_floating_base_answers_as_a_fixed_joint_placing_it, DSS_NE
     }
     const Eigen::Quaterniond r(q[idx[6]], q[idx[3]], q[idx[4]], q[idx[5]]);
     const Eigen::Vector3d rpy = r.normalized().toRotationMatrix().eulerAngles(2, 1, 0);
-    std::ostringstream fixed;
-    fixed.precision(17);
-    fixed << "<link name=\"world\"/><joint name=\"place\" type=\"fixed\"><parent link=\"world\"/>"
-          << "<child link=\"panda_link0\"/><origin xyz=\"" << q[idx[0]] << " " << q[idx[1]] << " "
-          << q[idx[2]] << "\" rpy=\"" << rpy[2] << " " << rpy[1] << " " << rpy[0] << "\"/></joint>";
-    const std::regex robot_tag("(<robot[^>]*>)");
-    BOOST_REQUIRE(std::regex_search(urdf, robot_tag));
-    const std::string placed = std::regex_replace(urdf, robot_tag, "$1" + fixed.str(),
-                                                  std::regex_constants::format_first_only);
-    dss::LoadedRobot fixed_robot;
-    fixed_robot.model =
-        std::make_shared<const dss::RobotModel>(dss::loadUrdfString(placed, "placed.urdf", dir));
-    fixed_robot.srdf = dss::parseSrdf(fixed_srdf, "placed.srdf");
-    std::map<std::string, double> arm_start;
-    for (const auto& [n, v] : f.start)
-      if (fixed_robot.model->variableIndex(n) >= 0) arm_start[n] = v;
-    const dss::Problem pf = dss::makeProblem(fixed_robot, f.scene, "panda_arm", arm_start);
+    const dss::LoadedRobot fixed_robot = dss_test::placedByFixedJoint(
+        urdf, "panda_link0", Eigen::Vector3d(q[idx[0]], q[idx[1]], q[idx[2]]),
+        Eigen::Vector3d(rpy[2], rpy[1], rpy[0]), fixed_srdf, dir);
+    const dss::Problem pf = dss::makeProblem(fixed_robot, f.scene, "panda_arm",
+                                             dss_test::startOf(*fixed_robot.model, f.start));
     const dss::DssChecker at_fixed(pf.model);
-    const dss::RobotModel& fm = *fixed_robot.model;
     std::mt19937_64 rng(pose);
     for (int k = 0; k < 150; ++k) {
-      std::vector<double> qf = pf.model->held();
-      for (int a : pf.model->groupActive()) {
-        const auto& j = fm.joints[fm.active_joints[a]];
-        const double v =
-            std::uniform_real_distribution<double>(j.limits.lower, j.limits.upper)(rng);
-        qf[a] = v;
-        q[m.variableIndex(fm.activeJointNames()[a])] = v;
-      }
+      std::vector<double> qf;
+      dss_test::drawGroupJoints(pf, m, rng, qf, q);
       const dss::StateVerdict a = floating.check(q.data()), b = at_fixed.check(qf.data());
       // The two kinematics differ in rounding only (a quaternion against roll, pitch, yaw):
       // where the answers differ, the one that says free must see the state at contact.
@@ -191,53 +166,19 @@ BOOST_AUTO_TEST_CASE(a_floating_base_answers_as_a_fixed_joint_placing_it, DSS_NE
 
 BOOST_AUTO_TEST_CASE(dss_and_fcl_hull_agree_on_random_states, DSS_NEEDS_SHARED) {
   const FloatingPanda f;
-  auto dss = dss::makeStateChecker(f.problem.model, {"dss"});
-  auto fcl = dss::makeStateChecker(f.problem.model, {"fcl-hull"});
-  ob::StateSamplerPtr sampler = f.problem.map->space()->allocStateSampler();
-  ob::ScopedState<> s(f.problem.map->space());
-  std::vector<double> q(f.robot.model->numActiveJoints());
-  int differ = 0, colliding = 0;
   const int n = 3000;
-  for (int k = 0; k < n; ++k) {
-    sampler->sampleUniform(s.get());
-    BOOST_REQUIRE(f.problem.map->toJoints(s.get(), q.data()));
-    const dss::StateVerdict a = dss->check(q.data()), b = fcl->check(q.data());
-    differ += a != b;
-    colliding += a == dss::StateVerdict::kColliding;
-  }
-  BOOST_TEST(differ == 0);
-  BOOST_TEST(colliding > 0);
-  BOOST_TEST(colliding < n);
+  const dss_test::Agreement t = dss_test::dssAgainstFclHull(f.problem, n);
+  BOOST_TEST(t.differ == 0);
+  BOOST_TEST(t.colliding > 0);
+  BOOST_TEST(t.colliding < n);
 }
 
 BOOST_AUTO_TEST_CASE(continuous_validator_misses_nothing_a_dense_check_finds, DSS_NEEDS_SHARED) {
   const FloatingPanda f;
-  auto checker = dss::makeValidityChecker(f.problem, {"dss"});
-  auto motion = dss::makeContinuousMotionValidator(f.problem, *checker);
-  const auto& si = f.problem.si;
-  ob::StateSamplerPtr sampler = si->allocStateSampler();
-  ob::ScopedState<> a(si->getStateSpace()), b(si->getStateSpace()), mid(si->getStateSpace());
-  int accepted = 0, rejected = 0, missed = 0;
-  for (int k = 0; k < 200; ++k) {
-    do sampler->sampleUniform(a.get());
-    while (!checker->isValid(a.get()));
-    sampler->sampleUniformNear(b.get(), a.get(), 0.1 * si->getMaximumExtent());
-    si->enforceBounds(b.get());
-    if (!checker->isValid(b.get())) continue;
-    const bool clear = motion->checkMotion(a.get(), b.get());
-    (clear ? accepted : rejected) += 1;
-    if (!clear) continue;
-    for (int i = 1; i < 400; ++i) {
-      si->getStateSpace()->interpolate(a.get(), b.get(), i / 400.0, mid.get());
-      if (!checker->isValid(mid.get())) {
-        ++missed;
-        break;
-      }
-    }
-  }
-  BOOST_TEST(missed == 0);
-  BOOST_TEST(accepted > 0);
-  BOOST_TEST(rejected > 0);
+  const dss_test::MotionTally t = dss_test::continuousAgainstDense(f.problem, 200, 0.1);
+  BOOST_TEST(t.missed == 0);
+  BOOST_TEST(t.accepted > 0);
+  BOOST_TEST(t.rejected > 0);
 }
 
 // RRTConnect from the request's start (base at the origin) to its goal joints with the base

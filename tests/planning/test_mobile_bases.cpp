@@ -10,10 +10,8 @@
 
 #include <boost/test/unit_test.hpp>
 #include <cmath>
-#include <fstream>
 #include <random>
 #include <regex>
-#include <sstream>
 
 #include "dss/checker/dss_checker.h"
 #include "dss/planning/continuous_motion_validator.h"
@@ -23,6 +21,8 @@
 #include "dss/robot/urdf_loader.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/placed_robot.h"
+#include "support/space_sampling_checks.h"
 #include "support/thrown_message.h"
 
 namespace ob = ompl::base;
@@ -38,13 +38,6 @@ const Case kMobile{kRobots + "/dss_mobile_base", "dss_mobile_base.urdf", "dss_mo
                    "scenes/aisle.yaml", "scenes/aisle_request.yaml"};
 const Case kFlyer{kRobots + "/dss_free_flyer", "dss_free_flyer.urdf", "dss_free_flyer.srdf",
                   "scenes/window.yaml", "scenes/window_request.yaml"};
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // The robot bounded by its request's workspace, the request's start, and the problem.
 struct Loaded {
@@ -115,8 +108,8 @@ BOOST_AUTO_TEST_CASE(a_base_far_away_answers_as_a_fixed_joint_placing_it_there) 
   // The same robot with its base placed by a fixed joint from a new root: the SRDF's planar
   // virtual joint becomes a fixed one (its groups then hold the arm only).
   const Loaded l = load(kMobile);
-  const std::string urdf = readText(kMobile.dir + "/" + kMobile.urdf);
-  const std::string srdf = std::regex_replace(readText(kMobile.dir + "/" + kMobile.srdf),
+  const std::string urdf = dss_test::readText(kMobile.dir + "/" + kMobile.urdf);
+  const std::string srdf = std::regex_replace(dss_test::readText(kMobile.dir + "/" + kMobile.srdf),
                                               std::regex("type=\"planar\""), "type=\"fixed\"");
   const dss::Scene scene = dss::loadScene(kMobile.dir + "/" + kMobile.scene);
   const dss::RobotModel& m = *l.robot.model;
@@ -139,34 +132,17 @@ BOOST_AUTO_TEST_CASE(a_base_far_away_answers_as_a_fixed_joint_placing_it_there) 
       for (int v : {x, y, th}) qb[v] = q[v];
       if (fcl_base->check(qb.data()) == dss::StateVerdict::kFree) break;
     }
-    std::ostringstream fixed;
-    fixed.precision(17);
-    fixed << "<link name=\"world\"/><joint name=\"place\" type=\"fixed\"><parent link=\"world\"/>"
-          << "<child link=\"base_link\"/><origin xyz=\"" << q[x] << " " << q[y] << " 0\" rpy=\"0 0 "
-          << q[th] << "\"/></joint>";
-    const std::string placed =
-        std::regex_replace(urdf, std::regex("(<robot name=\"[^\"]*\">)"), "$1" + fixed.str());
     // Mesh paths resolve against the original folder.
-    dss::LoadedRobot fixed_robot;
-    fixed_robot.model = std::make_shared<const dss::RobotModel>(
-        dss::loadUrdfString(placed, "placed.urdf", kMobile.dir));
-    fixed_robot.srdf = dss::parseSrdf(srdf, "placed.srdf");
-    std::map<std::string, double> arm_start;
-    for (const auto& [n, v] : l.start)
-      if (fixed_robot.model->variableIndex(n) >= 0) arm_start[n] = v;
-    const dss::Problem pf = dss::makeProblem(fixed_robot, scene, "mast_arm", arm_start);
+    const dss::LoadedRobot fixed_robot =
+        dss_test::placedByFixedJoint(urdf, "base_link", Eigen::Vector3d(q[x], q[y], 0.0),
+                                     Eigen::Vector3d(0.0, 0.0, q[th]), srdf, kMobile.dir);
+    const dss::Problem pf = dss::makeProblem(fixed_robot, scene, "mast_arm",
+                                             dss_test::startOf(*fixed_robot.model, l.start));
     const dss::DssChecker at_fixed(pf.model);
-    const dss::RobotModel& fm = *fixed_robot.model;
     std::mt19937_64 rng(pose);
     for (int k = 0; k < 300; ++k) {
-      std::vector<double> qf = pf.model->held();
-      for (int a : pf.model->groupActive()) {
-        const auto& j = fm.joints[fm.active_joints[a]];
-        const double v =
-            std::uniform_real_distribution<double>(j.limits.lower, j.limits.upper)(rng);
-        qf[a] = v;
-        q[m.variableIndex(fm.activeJointNames()[a])] = v;
-      }
+      std::vector<double> qf;
+      dss_test::drawGroupJoints(pf, m, rng, qf, q);
       const dss::StateVerdict a = planar.check(q.data()), b = at_fixed.check(qf.data());
       BOOST_TEST((a == b), "pose " << pose << " state " << k);
       colliding += a == dss::StateVerdict::kColliding;
@@ -181,54 +157,22 @@ BOOST_AUTO_TEST_CASE(a_base_far_away_answers_as_a_fixed_joint_placing_it_there) 
 BOOST_AUTO_TEST_CASE(dss_and_fcl_hull_agree_on_random_states) {
   for (const Case* c : {&kMobile, &kFlyer}) {
     const Loaded l = load(*c);
-    auto dss = dss::makeStateChecker(l.problem.model, {"dss"});
-    auto fcl = dss::makeStateChecker(l.problem.model, {"fcl-hull"});
-    ob::StateSamplerPtr sampler = l.problem.map->space()->allocStateSampler();
-    ob::ScopedState<> s(l.problem.map->space());
-    int differ = 0, colliding = 0;
     const int n = 3000;
-    for (int k = 0; k < n; ++k) {
-      const std::vector<double> q = sample(l.problem, sampler, s.get());
-      const dss::StateVerdict a = dss->check(q.data()), b = fcl->check(q.data());
-      differ += a != b;
-      colliding += a == dss::StateVerdict::kColliding;
-    }
-    BOOST_TEST(differ == 0, c->urdf);
-    BOOST_TEST(colliding > 0, c->urdf);
-    BOOST_TEST(colliding < n, c->urdf);
+    const dss_test::Agreement t = dss_test::dssAgainstFclHull(l.problem, n);
+    BOOST_TEST(t.differ == 0, c->urdf);
+    BOOST_TEST(t.colliding > 0, c->urdf);
+    BOOST_TEST(t.colliding < n, c->urdf);
   }
 }
 
 BOOST_AUTO_TEST_CASE(continuous_validator_misses_nothing_a_dense_check_finds) {
   for (const Case* c : {&kMobile, &kFlyer}) {
     const Loaded l = load(*c);
-    auto checker = dss::makeValidityChecker(l.problem, {"dss"});
-    auto motion = dss::makeContinuousMotionValidator(l.problem, *checker);
-    const auto& si = l.problem.si;
-    ob::StateSamplerPtr sampler = si->allocStateSampler();
-    ob::ScopedState<> a(si->getStateSpace()), b(si->getStateSpace()), mid(si->getStateSpace());
-    int accepted = 0, rejected = 0, missed = 0;
-    for (int k = 0; k < 300; ++k) {
-      do sampler->sampleUniform(a.get());
-      while (!checker->isValid(a.get()));
-      // Motions of up to a quarter of the space's extent.
-      sampler->sampleUniformNear(b.get(), a.get(), 0.25 * si->getMaximumExtent());
-      si->enforceBounds(b.get());
-      if (!checker->isValid(b.get())) continue;
-      const bool clear = motion->checkMotion(a.get(), b.get());
-      (clear ? accepted : rejected) += 1;
-      if (!clear) continue;
-      for (int i = 1; i < 400; ++i) {
-        si->getStateSpace()->interpolate(a.get(), b.get(), i / 400.0, mid.get());
-        if (!checker->isValid(mid.get())) {
-          ++missed;
-          break;
-        }
-      }
-    }
-    BOOST_TEST(missed == 0, c->urdf);
-    BOOST_TEST(accepted > 0, c->urdf);
-    BOOST_TEST(rejected > 0, c->urdf);
+    // Motions of up to a quarter of the space's extent.
+    const dss_test::MotionTally t = dss_test::continuousAgainstDense(l.problem, 300, 0.25);
+    BOOST_TEST(t.missed == 0, c->urdf);
+    BOOST_TEST(t.accepted > 0, c->urdf);
+    BOOST_TEST(t.rejected > 0, c->urdf);
   }
 }
 
