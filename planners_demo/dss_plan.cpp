@@ -206,34 +206,40 @@ dss::CheckerConfig checkerConfig(const Args& a, const std::string& name) {
 }
 
 // Why a state a checker finds invalid is: a value outside its bounds, or the pairs that
-// collide there (exact DSS on the problem's model with the run's paddings; three named), with
-// a hint when a mesh checked as its hull is involved (`hint`).
-std::string whyInvalid(const Args& a, const dss::Problem& p, const double* q, bool hint = true) {
+// collide there (exact DSS on the problem's model with the run's paddings; three named).
+struct Why {
+  std::string text;
+  bool hull = false;  ///< a mesh checked as its convex hull is involved
+  /// The text with a hint when a mesh hull is involved (for a person at the terminal).
+  std::string withHint() const {
+    return hull ? text +
+                      " (meshes are checked as their convex hulls; for a concave link, "
+                      "--meshes decomposed follows the mesh more closely)"
+                : text;
+  }
+};
+
+Why whyInvalid(const Args& a, const dss::Problem& p, const double* q) {
   dss::DssCheckerSettings set;
   set.scene_padding = a.padding;
   set.self_padding = a.self_padding;
   const dss::DssChecker dss_checker(p.model, set);
   const auto contacts = dss::contactsAt(dss_checker, q);
-  if (!contacts) return "a value is outside the model's bounds";
-  if (contacts->empty()) return "no pair collides under exact DSS";
-  std::string out;
-  bool hull = false;
+  if (!contacts) return {"a value is outside the model's bounds"};
+  if (contacts->empty()) return {"no pair collides under exact DSS"};
+  Why why;
   for (std::size_t k = 0; k < contacts->size(); ++k) {
-    hull |= dss::involvesMeshHull(*p.model, (*contacts)[k]);
-    if (k < 3) out += (k ? "; " : "") + dss::describeContact(*p.model, (*contacts)[k]);
+    why.hull |= dss::involvesMeshHull(*p.model, (*contacts)[k]);
+    if (k < 3) why.text += (k ? "; " : "") + dss::describeContact(*p.model, (*contacts)[k]);
   }
-  if (contacts->size() > 3) out += "; and " + std::to_string(contacts->size() - 3) + " more";
-  if (hull && hint)
-    out +=
-        " (meshes are checked as their convex hulls; for a concave link, --meshes decomposed "
-        "follows the mesh more closely)";
-  return out;
+  if (contacts->size() > 3) why.text += "; and " + std::to_string(contacts->size() - 3) + " more";
+  return why;
 }
 
-std::string whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s, bool hint = true) {
+Why whyInvalid(const Args& a, const dss::Problem& p, const ob::State* s) {
   std::vector<double> q(p.model->robot().numActiveJoints());
-  if (!p.map->toJoints(s, q.data())) return "a value is not finite or outside its bounds";
-  return whyInvalid(a, p, q.data(), hint);
+  if (!p.map->toJoints(s, q.data())) return {"a value is not finite or outside its bounds"};
+  return whyInvalid(a, p, q.data());
 }
 
 struct Outcome {
@@ -374,7 +380,7 @@ void writeRender(const Args& a, const LoadedProblem& lp, const dss::ValidityChec
   page.loaded_scene = &lp.scene;
   page.replay = &replay;
   for (const auto& q : replay.span_first_q)
-    page.span_causes.push_back(whyInvalid(a, lp.p, q.data(), false));
+    page.span_causes.push_back(whyInvalid(a, lp.p, q.data()).text);
   const std::string file = perProblemFile(a.render, ".html", files, !a.problems.empty());
   std::vector<std::string> notes;
   dss_plan::writeRenderHtml(file, page, &notes);
@@ -422,14 +428,14 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
-  const std::string start_why = start_valid ? "" : whyInvalid(a, p, s0, false);
-  const std::string goal_why = goal_valid ? "" : whyInvalid(a, p, g0, false);
+  const Why start_why = start_valid ? Why{} : whyInvalid(a, p, s0);
+  const Why goal_why = goal_valid ? Why{} : whyInvalid(a, p, g0);
   if (!start_valid)
     std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
-              << checker->checker().name() << ": " << whyInvalid(a, p, s0) << "\n";
+              << checker->checker().name() << ": " << start_why.withHint() << "\n";
   if (!goal_valid)
     std::cerr << "dss_plan: " << files.name << ": warning: goal state invalid under "
-              << checker->checker().name() << ": " << whyInvalid(a, p, g0) << "\n";
+              << checker->checker().name() << ": " << goal_why.withHint() << "\n";
   const dss::CheckerCounters counters0 = checker->counters();
   if (timed) timed->reset();
 
@@ -486,8 +492,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
-  if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why;
-  if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why;
+  if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why.text;
+  if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why.text;
   std::cout << j.dump() << std::endl;
   if (readable) {
     std::cout << "\n"
@@ -590,17 +596,19 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
           dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
     else if (a.motion == "discrete")  // states decided by the switching checker, in our order
       p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checkers.front()));
-    for (const auto& c : checkers) {
-      const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
-      if (!c->isValid(s0))
-        std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
-                  << c->checker().name() << ": " << whyInvalid(a, p, s0) << "\n";
-      const auto* goals = ss.getGoal()->as<ob::GoalStates>();
-      for (std::size_t g = 0; g < goals->getStateCount(); ++g)
-        if (!c->isValid(goals->getState(g)))
-          std::cerr << "dss_plan: " << files.name << ": warning: goal state " << g
-                    << " invalid under " << c->checker().name() << ": "
-                    << whyInvalid(a, p, goals->getState(g)) << "\n";
+    // Each invalid state explained once (by exact DSS), whichever checkers refuse it.
+    const auto* goals = ss.getGoal()->as<ob::GoalStates>();
+    std::vector<const ob::State*> ends = {ss.getProblemDefinition()->getStartState(0)};
+    for (std::size_t g = 0; g < goals->getStateCount(); ++g) ends.push_back(goals->getState(g));
+    for (std::size_t e = 0; e < ends.size(); ++e) {
+      std::string why;
+      for (const auto& c : checkers) {
+        if (c->isValid(ends[e])) continue;
+        if (why.empty()) why = whyInvalid(a, p, ends[e]).withHint();
+        std::cerr << "dss_plan: " << files.name << ": warning: "
+                  << (e == 0 ? std::string("start state") : "goal state " + std::to_string(e - 1))
+                  << " invalid under " << c->checker().name() << ": " << why << "\n";
+      }
     }
 
     InterleavedBenchmark b(ss, files.name);
