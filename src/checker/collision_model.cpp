@@ -99,20 +99,16 @@ RobotModel CollisionModel::foldedRobot() const {
 
 bool CollisionModel::withinBounds(const double* q) const {
   // One pass without branches over the ranges (a frozen value's range is its held value
-  // alone), then what else applies: a held value outside its joint's limits, the quaternions.
+  // alone; a held value outside its joint's limits is accepted as itself), then the
+  // quaternions.
   const double* const lo = range_lower_.data();
   const double* const hi = range_upper_.data();
+  const double* const held = range_held_.data();
   const std::size_t n = range_lower_.size();
   bool in_range = true;
-  for (std::size_t a = 0; a < n; ++a) in_range &= (q[a] >= lo[a]) & (q[a] <= hi[a]);
-  if (!in_range) {
-    for (std::size_t a = 0; a < n; ++a) {
-      const ValueBound& b = bounds_[a];
-      const double v = q[a];
-      if (v >= lo[a] && v <= hi[a]) continue;
-      if (!(b.kind == ValueBound::kHeldOrRange && v == b.held)) return false;
-    }
-  }
+  for (std::size_t a = 0; a < n; ++a)
+    in_range &= ((q[a] >= lo[a]) & (q[a] <= hi[a])) | (q[a] == held[a]);
+  if (!in_range) return false;
   for (const int a : quaternions_)
     if (!quaternionNormValid(q[a], q[a + 1], q[a + 2], q[a + 3])) return false;
   return true;
@@ -121,42 +117,33 @@ bool CollisionModel::withinBounds(const double* q) const {
 void CollisionModel::buildBounds() {
   const RobotModel& m = *robot_;
   constexpr double kMax = std::numeric_limits<double>::max();
-  bounds_.clear();
-  for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
-    const RobotJoint& j = m.joints[m.active_joints[a]];
-    ValueBound b{-kMax, kMax, held_[a], ValueBound::kRange};
-    const bool limited = j.type != JointType::kContinuous && j.limits.has_position_limits;
-    if (limited) {
-      // Limits are finite when read from a file; an infinite one stays a test for finiteness.
-      b.lower = std::max(j.limits.lower, -kMax);
-      b.upper = std::min(j.limits.upper, kMax);
-    }
-    if (frozen_[a])
-      b = {-kMax, kMax, held_[a], ValueBound::kFrozen};  // held exactly, and finite
-    else if (j.type == JointType::kBall && int(a) == j.active_index)
-      b.kind = ValueBound::kQuaternion;
-    else if (limited && !in_group_[a] && std::isfinite(held_[a]))
-      b.kind = ValueBound::kHeldOrRange;
-    bounds_.push_back(b);
-  }
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   range_lower_.clear();
   range_upper_.clear();
+  range_held_.clear();
   quaternions_.clear();
-  for (std::size_t a = 0; a < bounds_.size(); ++a) {
-    const ValueBound& b = bounds_[a];
-    double lo = b.lower, hi = b.upper;
-    // Frozen: the held value exactly, and finite (a non-finite one admits nothing).
-    if (b.kind == ValueBound::kFrozen) {
-      lo = std::abs(b.held) <= kMax ? b.held : kMax;
-      hi = std::abs(b.held) <= kMax ? b.held : -kMax;
-    }
-    if (b.kind == ValueBound::kQuaternion) {  // finite here; the norm is tested apart
-      lo = -kMax;
+  for (std::size_t a = 0; a < m.numActiveJoints(); ++a) {
+    const RobotJoint& j = m.joints[m.active_joints[a]];
+    const bool limited = j.type != JointType::kContinuous && j.limits.has_position_limits;
+    // Limits are finite when read from a file; an infinite one stays a test for finiteness.
+    double lo = limited ? std::max(j.limits.lower, -kMax) : -kMax;
+    double hi = limited ? std::min(j.limits.upper, kMax) : kMax;
+    double held = kNone;
+    if (frozen_[a]) {
+      // The held value exactly, and finite (a non-finite one admits nothing).
+      const bool finite = std::abs(held_[a]) <= kMax;
+      lo = finite ? held_[a] : kMax;
+      hi = finite ? held_[a] : -kMax;
+    } else if (j.type == JointType::kBall && int(a) == j.active_index) {
+      lo = -kMax;  // finite here; the norm is tested apart
       hi = kMax;
       quaternions_.push_back(int(a));
+    } else if (limited && !in_group_[a] && std::isfinite(held_[a])) {
+      held = held_[a];  // a joint outside the group may stay at its held value
     }
     range_lower_.push_back(lo);
     range_upper_.push_back(hi);
+    range_held_.push_back(held);
   }
 }
 

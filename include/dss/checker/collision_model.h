@@ -199,17 +199,12 @@ class CollisionModel {
   /// kinematics fold the joint at its held values (foldedRobot), so states must hold it there.
   std::vector<char> frozen_;
   std::vector<char> moves_;  ///< per link: moves with the group
-  /// withinBounds() per active joint, flattened: the range a value must lie in (+-DBL_MAX
-  /// without limits, so that the range test alone rejects NaN and infinities), and what else
-  /// applies.
-  struct ValueBound {
-    enum Kind : unsigned char { kRange, kFrozen, kHeldOrRange, kQuaternion };
-    double lower, upper, held;
-    Kind kind;
-  };
-  std::vector<ValueBound> bounds_;
-  std::vector<double> range_lower_, range_upper_;  ///< per value, as bounds_ (frozen: held)
-  std::vector<int> quaternions_;                   ///< the first value of each quaternion
+  /// withinBounds() per active joint: the range a value must lie in (+-DBL_MAX without
+  /// limits, so that the range test alone rejects NaN and infinities; a frozen value's range
+  /// is its held value), and a held value accepted outside the range (a joint outside the
+  /// group held outside its limits), else NaN, which no value equals.
+  std::vector<double> range_lower_, range_upper_, range_held_;
+  std::vector<int> quaternions_;  ///< the first value of each quaternion
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
   std::vector<SelfPair> self_pairs_;
