@@ -1,0 +1,213 @@
+// dss_plan's single solve (see solve_one.h).
+#include "solve_one.h"
+
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/goals/GoalStates.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <atomic>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "dss/core/simd_path.h"
+#include "dss/planning/continuous_motion_validator.h"
+#include "dss/robot/joint_states_csv.h"
+#include "invalid_state.h"
+#include "path_replay.h"
+#include "planner_registry.h"
+#include "render_html.h"
+
+namespace dss_plan {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace {
+
+// Wraps a checker and accumulates the wall time spent in isValid (for the per-problem report).
+class TimedChecker : public ob::StateValidityChecker {
+ public:
+  TimedChecker(const ob::SpaceInformationPtr& si, std::shared_ptr<dss::ValidityChecker> inner)
+      : ob::StateValidityChecker(si), inner_(std::move(inner)) {}
+  bool isValid(const ob::State* s) const override {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool v = inner_->isValid(s);
+    ns_ +=
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+            .count();
+    return v;
+  }
+  double seconds() const { return double(ns_.load()) * 1e-9; }
+  void reset() { ns_ = 0; }
+
+ private:
+  std::shared_ptr<dss::ValidityChecker> inner_;
+  mutable std::atomic<long long> ns_{0};
+};
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// --render: the page for the solution path (approximate when not solved; without any path,
+// the straight motion from the start to the first goal), every state along it checked.
+void writeRender(const Args& a, const LoadedProblem& lp, const dss::ValidityChecker& checker,
+                 og::SimpleSetup& ss, const ProblemFiles& files, const ob::PlannerStatus& status) {
+  const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
+  const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
+  const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  const bool have_path = ss.haveSolutionPath();
+  const og::PathGeometric path =
+      have_path ? ss.getSolutionPath() : og::PathGeometric(lp.p.si, s0, g0);
+  const PathReplay replay = replayPath(lp.p, checker, path);
+  RenderPage page;
+  page.title = files.name;
+  page.summary = std::string(solved ? "solved" : "NOT solved") + " (" + status.asString() +
+                 "), planner " + a.planner + ", checker " + checker.checker().name() + ", motion " +
+                 a.motion;
+  page.solved = solved;
+  page.path_kind = solved      ? "solution path"
+                   : have_path ? "approximate path (the goal not reached)"
+                               : "straight start-goal motion (no path found)";
+  page.model = lp.p.model.get();
+  page.loaded_scene = &lp.scene;
+  page.replay = &replay;
+  for (const auto& q : replay.span_first_q)
+    page.span_causes.push_back(whyInvalid(a, lp.p, q.data()).text);
+  const std::string file = perProblemFile(a.render, ".html", files, !a.problems.empty());
+  std::vector<std::string> notes;
+  writeRenderHtml(file, page, &notes);
+  for (const auto& n : notes)
+    std::cerr << "dss_plan: " << files.name << ": warning: render: " << n << "\n";
+  std::cerr << "dss_plan: " << files.name << ": render written to " << file << " ("
+            << replay.path_states << " path states, " << replay.samples_invalid << " of "
+            << replay.samples_checked << " checked states invalid)\n";
+}
+
+}  // namespace
+
+Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFiles& files,
+                 bool readable) {
+  // The problem's setup: its request and scene read, the workspace applied and the model built
+  // (the robot is loaded once per process, before).
+  const auto setup_begin = std::chrono::steady_clock::now();
+  LoadedProblem lp = loadProblem(a, robot, files);
+  dss::Problem& p = lp.p;
+  auto checker = dss::makeValidityChecker(p, checkerConfig(a, a.checker));
+  const double setup_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_begin).count();
+
+  og::SimpleSetup ss(p.si);
+  // The planner sees our checker itself unless checking time is asked for: the clock reads of
+  // TimedChecker cost about as much as a tenth of a DSS state check.
+  std::shared_ptr<TimedChecker> timed;
+  if (a.check_time) {
+    timed = std::make_shared<TimedChecker>(p.si, checker);
+    ss.setStateValidityChecker(timed);
+  } else {
+    ss.setStateValidityChecker(checker);
+  }
+  if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
+  auto factory = planners().find(a.planner);
+  ss.setPlanner(factory->second(p.si));
+  setStartAndGoals(ss, lp);
+  const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
+  const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
+  std::shared_ptr<dss::ContinuousMotionValidator> cmv;
+  if (a.motion == "continuous") {
+    cmv = dss::makeContinuousMotionValidator(p, *checker, a.min_fraction);
+    p.si->setMotionValidator(cmv);
+  } else if (a.motion == "discrete") {
+    p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker));
+  }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
+  ss.setup();
+  const bool start_valid = checker->isValid(s0);
+  const bool goal_valid = checker->isValid(g0);
+  const Why start_why = start_valid ? Why{} : whyInvalid(a, p, s0);
+  const Why goal_why = goal_valid ? Why{} : whyInvalid(a, p, g0);
+  if (!start_valid)
+    std::cerr << "dss_plan: " << files.name << ": warning: start state invalid under "
+              << checker->checker().name() << ": " << start_why.withHint() << "\n";
+  if (!goal_valid)
+    std::cerr << "dss_plan: " << files.name << ": warning: goal state invalid under "
+              << checker->checker().name() << ": " << goal_why.withHint() << "\n";
+  const dss::CheckerCounters counters0 = checker->counters();
+  if (timed) timed->reset();
+
+  // The time limit is checked by the planner itself at every iteration (a clock read). OMPL's
+  // solve(seconds) would, for limits of 1 s and more, start a timer thread per solve, and its
+  // start and join cost about 1 ms of wall time here: more than many of these plans take.
+  const double cpu0 = threadCpuSeconds();
+  const ob::PlannerStatus status = ss.solve(ob::timedPlannerTerminationCondition(a.time));
+  const double cpu = threadCpuSeconds() - cpu0;
+  const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  const double t = ss.getLastPlanComputationTime();
+  const dss::CheckerCounters counters = checker->counters() - counters0;
+  const auto mv = p.si->getMotionValidator();
+  double length = 0.0;
+  std::size_t path_states = 0;
+  if (solved) {
+    if (a.simplify) ss.simplifySolution();
+    length = ss.getSolutionPath().length();
+    path_states = ss.getSolutionPath().getStateCount();
+    if (!a.path.empty()) {
+      // Every joint of the robot (the group's, the held ones and mimic joints), so that the
+      // file reads back into dss_check --states.
+      const std::string file = perProblemFile(a.path, ".csv", files, !a.problems.empty());
+      std::ofstream out(file);
+      if (!out) throw std::runtime_error(file + ": cannot write");
+      std::vector<std::vector<double>> states;
+      std::vector<double> q(p.model->robot().numActiveJoints());
+      for (auto* s : ss.getSolutionPath().getStates()) {
+        p.map->toJoints(s, q.data());
+        states.push_back(q);
+      }
+      dss::writeJointStatesCsv(out, p.model->robot(), states);
+      if (!out) throw std::runtime_error(file + ": cannot write");
+    }
+  }
+  nlohmann::json j;
+  j["problem"] = files.name;
+  j["solved"] = solved;
+  j["status"] = status.asString();
+  j["planning_time_s"] = t;
+  j["planning_cpu_s"] = cpu;  // this thread's CPU time: robust when the machine is shared
+  j["setup_s"] = setup_s;
+  j["path_length"] = length;
+  j["path_states"] = path_states;
+  j["validity_checks"] = counters.checks;
+  j["colliding_states"] = counters.collisions;
+  j["pair_tests"] = counters.pair_tests;
+  j["motion_checks"] = dss::motionChecks(*mv);
+  j["checker"] = checker->checker().name();
+  j["simd"] = dss::simdPathName(dss::activeSimdPath());
+  if (timed) j["checking_time_s"] = timed->seconds();
+  j["planner"] = a.planner;
+  j["motion"] = a.motion;
+  j["seed"] = a.seed;
+  j["cap_hits"] = counters.cap_hits;
+  if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
+  if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why.text;
+  if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why.text;
+  std::cout << j.dump() << std::endl;
+  if (readable) {
+    std::cout << "\n"
+              << robot.model->name << " in " << files.scene << "\n  " << p.model->summary()
+              << "\n  group '" << p.group << "' (" << p.map->dimension() << " joints), planner "
+              << a.planner << ", checker " << checker->checker().name() << "\n  "
+              << (solved ? "solved" : "NOT solved") << " in " << t * 1e3 << " ms: path of "
+              << path_states << " states, length " << length << " rad; " << counters.checks
+              << " state checks (" << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
+              << " us of planning per check), " << j["motion_checks"] << " motion checks\n";
+  }
+  if (!a.render.empty()) writeRender(a, lp, *checker, ss, files, status);
+  return {solved, t};
+}
+
+}  // namespace dss_plan
