@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -78,6 +79,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   placeOnPoseLinks();
   buildSelfPairs(srdf, options);
   pruneObstacles(options);
+  keepPayingChains(options.chain_min_settled);
   buildSelfTables(options);
   pair_blocks_ = buildPairBlocks(*this, options.pair_block_min_saving);
   base_table_ = BaseSceneTable(*this, options.base_table_cells, options.base_table_padding);
@@ -184,8 +186,94 @@ void CollisionModel::buildSlots() {
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
       s.radius =
           std::max(s.radius, (elements_[e].center_L - s.center_L).norm() + elements_[e].radius);
+    addChain(s);
     slots_.push_back(s);
   }
+}
+
+void CollisionModel::addChain(Slot& s) {
+  constexpr int kMaxChainElements = 64;  // one bit each in the sweep
+  if (s.num_elements > kMaxChainElements) return;
+  std::vector<ChainPoint> points;
+  bool adds = false;  // a ball smaller than the slot's sphere, or an inner ball
+  for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+    const Element& el = elements_[e];
+    for (int k = 0; k < el.chain.num_points; ++k) {
+      ChainPoint p;
+      p.c_L = el.source->X_LS * el.chain.center_S[k];
+      p.outer = el.chain.outer[k];
+      p.inner =
+          el.chain.inner[k] > 0.0 ? el.chain.inner[k] : -std::numeric_limits<double>::infinity();
+      p.element = e - s.first_element;
+      adds = adds || p.inner > 0.0 || p.outer < s.radius * (1.0 - 1e-6);
+      points.push_back(p);
+    }
+  }
+  if (!adds) return;
+  std::stable_sort(points.begin(), points.end(), [&](const ChainPoint& a, const ChainPoint& b) {
+    return (a.c_L - s.center_L).squaredNorm() > (b.c_L - s.center_L).squaredNorm();
+  });
+  s.first_chain = int(chain_.size());
+  s.num_chain = int(points.size());
+  chain_.insert(chain_.end(), points.begin(), points.end());
+}
+
+void CollisionModel::keepPayingChains(double min_settled) {
+  // On random states of the group (a fixed seed, the held joints at their values), a slot's
+  // chain runs where the grid does not clear its sphere; it is kept where it settles the slot
+  // often enough (CollisionModelOptions::chain_min_settled) for its lookups to cost less than
+  // the stages it saves. Measured: the free flyer's beam and our mobile base's mast and arm
+  // settle half or more and keep theirs; the Panda's links, whose stages are few and cheap,
+  // settle 10-30 % and would only be slowed down.
+  if (chain_.empty() || !(min_settled > 0.0)) return;
+  const RobotModel& m = *robot_;
+  constexpr int kSamples = 256;
+  std::mt19937_64 rng(1);
+  std::vector<double> q = held_;
+  std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
+  std::vector<int> reached(slots_.size(), 0), settled(slots_.size(), 0);
+  for (int k = 0; k < kSamples; ++k) {
+    for (int a : group_active_) {
+      const RobotJoint& jt = m.joints[m.active_joints[a]];
+      const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
+      const double lo = bounded ? jt.limits.lower : -3.141592653589793;
+      const double hi = bounded ? jt.limits.upper : 3.141592653589793;
+      q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
+    kin_.computeLinkPoses(q.data(), X.data());
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+      const Slot& s = slots_[i];
+      if (s.num_chain == 0 || s.obstacles.empty()) continue;
+      const Eigen::Isometry3d& XL = X[s.link];
+      if (grid_.clear(XL * s.center_L, s.radius)) continue;
+      ++reached[i];
+      std::uint64_t open = 0;
+      bool deep = false;
+      for (int c = s.first_chain; c < s.first_chain + s.num_chain; ++c) {
+        const ChainPoint& p = chain_[std::size_t(c)];
+        const std::uint16_t v = grid_.cell(XL * p.c_L);
+        deep = deep || ((v >> 8) != ClearanceGrid::kUnknown &&
+                        (v >> 8) * ClearanceGrid::kQuantum <= p.inner);
+        if (!((v & 0xff) * ClearanceGrid::kQuantum > p.outer))
+          open |= std::uint64_t(1) << p.element;
+      }
+      settled[i] += deep || !open;
+    }
+  }
+  std::vector<ChainPoint> kept;
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    Slot& s = slots_[i];
+    const bool pays =
+        reached[i] > 0 && settled[i] >= min_settled * (1.0 + s.num_chain / 8.0) * reached[i];
+    const int first = s.first_chain;
+    s.first_chain = int(kept.size());
+    if (!pays) {
+      s.num_chain = 0;
+      continue;
+    }
+    kept.insert(kept.end(), chain_.begin() + first, chain_.begin() + first + s.num_chain);
+  }
+  chain_ = std::move(kept);
 }
 
 void CollisionModel::placeOnPoseLinks() {
@@ -198,6 +286,8 @@ void CollisionModel::placeOnPoseLinks() {
     wanted[s.pose_link] = 1;
     const Eigen::Isometry3d& X = p.X_PL[s.link];
     s.center_P = X * s.center_L;
+    for (int k = s.first_chain; k < s.first_chain + s.num_chain; ++k)
+      chain_[std::size_t(k)].c_P = X * chain_[std::size_t(k)].c_L;
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
       Element& el = elements_[e];
       el.X_PS = X * el.source->X_LS;
@@ -294,12 +384,16 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
   std::vector<Aabb> boxes;
   for (const auto& o : scene_.obstacles) boxes.push_back(worldAabb(o));
   std::vector<char> keep(scene_.obstacles.size(), 0);
+  std::vector<char> allowed_somewhere(scene_.obstacles.size(), 0);
   std::vector<std::vector<int>> slot_obstacles(slots_.size());
   for (std::size_t s = 0; s < slots_.size(); ++s) {
     if (!slots_[s].moves) continue;
     const std::string& lname = m.links[slots_[s].link].name;
     for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) {
-      if (scene_.allowed_collisions.allowed(lname, scene_.obstacles[o].object_id)) continue;
+      if (scene_.allowed_collisions.allowed(lname, scene_.obstacles[o].object_id)) {
+        allowed_somewhere[o] = 1;
+        continue;
+      }
       ++scene_pairs_before_;
       if (options.prune_obstacles) {
         const double r = slots_[s].reach_radius + options.prune_margin;
@@ -329,6 +423,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
   }
   std::vector<int> new_index(scene_.obstacles.size(), -1);
   std::vector<Obstacle> kept;
+  std::vector<Obb> exact_boxes;  // box obstacles no moving link may touch: the grid's upper bounds
   for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) {
     if (!keep[o]) continue;
     new_index[o] = int(kept.size());
@@ -344,6 +439,12 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
     obbs_.push_back(b);
     const auto* box = std::get_if<Box>(&ob.shape);
     inner_half_.push_back(box ? box->half : Eigen::Vector3d::Constant(-1.0));
+    if (box && !allowed_somewhere[o]) {
+      Obb exact = b;
+      exact.c = ob.X_WO.translation();
+      exact.h = box->half;
+      exact_boxes.push_back(exact);
+    }
   }
   scene_.obstacles = std::move(kept);
   for (std::size_t s = 0; s < slots_.size(); ++s) {
@@ -368,6 +469,11 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
     }
   grid_ = ClearanceGrid(region, boxes_, obbs_);
+  // Upper bounds where a chain's inner ball can use them: up to its largest radius plus room
+  // for a scene padding.
+  double inner = 0.0;
+  for (const ChainPoint& p : chain_) inner = std::max(inner, p.inner);
+  if (!chain_.empty()) grid_.buildUpper(exact_boxes, inner > 0.0 ? inner + 0.25 : 0.0);
   // Candidate lists pay where many obstacles are kept (a mobile base among shelves): a link
   // sphere the grid cannot clear is then tested against the few obstacles near it only.
   constexpr std::size_t kMinCandidateObstacles = 16;

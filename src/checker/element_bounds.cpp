@@ -2,6 +2,7 @@
 #include "dss/checker/element_bounds.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace dss {
@@ -22,9 +23,18 @@ void elementSphere(const AnyShape& shape, const Eigen::Isometry3d& X_LS, Eigen::
     *radius = rr * (1.0 + 1e-12) + 1e-12;
     return;
   }
-  // Primitives are centred at their origin (the cone's magnitude is also about the origin).
+  // Primitives about their origin: the farthest point of a box is a corner, of a cylinder or
+  // a cone a point of a rim (the cone's apex is nearer), of an ellipsoid the end of its longest
+  // axis (shapeMagnitude is a cheaper, looser bound for boxes, cylinders and cones).
+  double r = shapeMagnitude(shape);
+  if (const auto* b = std::get_if<Box>(&shape))
+    r = b->half.norm();
+  else if (const auto* y = std::get_if<Cylinder>(&shape))
+    r = std::hypot(y->radius, y->half_length);
+  else if (const auto* n = std::get_if<Cone>(&shape))
+    r = std::hypot(n->radius, n->half_length);
   *center_L = X_LS.translation();
-  *radius = shapeMagnitude(shape) * (1.0 + 1e-12) + 1e-12;
+  *radius = r * (1.0 + 1e-12) + 1e-12;
 }
 
 void localBox(const AnyShape& shape, Eigen::Vector3d* c, Eigen::Vector3d* h) {

@@ -23,6 +23,7 @@ ElementShapes computeElementShapes(const CollisionElement& ce) {
   e.has_inner_box =
       innerBox(ce.shape, e.box_center_S, e.box_half, &e.inner_box_c, &e.inner_box_h) &&
       8.0 * e.inner_box_h.prod() >= balls_volume;
+  e.chain = sphereChain(ce.shape, e.box_center_S, e.box_half);
   return e;
 }
 

@@ -47,28 +47,53 @@ double supportValue(const AnyShape& shape, const Eigen::Vector3d& u) {
                     shape);
 }
 
+// The distance from c to the boundary of `shape` (negative outside; -1 for cones, which get
+// no inner balls), from its facet planes for a hull.
+double boundaryDistance(const AnyShape& shape, const std::vector<Eigen::Vector4d>& planes,
+                        const Eigen::Vector3d& c) {
+  if (const auto* s = std::get_if<Sphere>(&shape)) return s->radius - c.norm();
+  if (const auto* b = std::get_if<Box>(&shape)) return (b->half - c.cwiseAbs()).minCoeff();
+  if (const auto* y = std::get_if<Cylinder>(&shape))
+    return std::min(y->radius - c.head<2>().norm(), y->half_length - std::abs(c.z()));
+  if (const auto* k = std::get_if<Capsule>(&shape))
+    return k->radius -
+           Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
+  if (const auto* e = std::get_if<Ellipsoid>(&shape)) return e->radii.minCoeff() - c.norm();
+  if (std::holds_alternative<ConvexHull>(shape)) {
+    double r = std::numeric_limits<double>::infinity();
+    for (const auto& p : planes) r = std::min(r, p.w() - p.head<3>().dot(c));
+    return r;
+  }
+  return -1.0;
+}
+
+// Whether the ball (c, r) lies inside `shape`: h(u) >= u.c + r for every checked direction u.
+bool ballInside(const AnyShape& shape, const std::vector<Eigen::Vector3d>& dirs,
+                const Eigen::Vector3d& c, double r) {
+  for (const auto& u : dirs)
+    if (!(supportValue(shape, u) >= u.dot(c) + r)) return false;
+  return true;
+}
+
 }  // namespace
+
+void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r) {
+  std::vector<Eigen::Vector4d> planes;
+  const bool hull = std::holds_alternative<ConvexHull>(shape);
+  const bool solid = !hull || facetPlanes(shape, &planes);
+  const std::vector<Eigen::Vector3d> dirs = checkDirections(planes);
+  for (int k = 0; k < n; ++k) {
+    const double shrink = 1e-7 * (shapeMagnitude(shape) + c[k].norm()) + 1e-12;
+    const double rk = solid ? boundaryDistance(shape, planes, c[k]) - shrink : -1.0;
+    r[k] = rk > 0.0 && ballInside(shape, dirs, c[k], rk) ? rk : 0.0;
+  }
+}
 
 int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
                Eigen::Vector4d* out, int max_out) {
   std::vector<Eigen::Vector4d> planes;
   if (std::holds_alternative<ConvexHull>(shape) && !facetPlanes(shape, &planes)) return 0;
-  auto radius = [&](const Eigen::Vector3d& c) -> double {
-    if (const auto* s = std::get_if<Sphere>(&shape)) return s->radius - c.norm();
-    if (const auto* b = std::get_if<Box>(&shape)) return (b->half - c.cwiseAbs()).minCoeff();
-    if (const auto* y = std::get_if<Cylinder>(&shape))
-      return std::min(y->radius - c.head<2>().norm(), y->half_length - std::abs(c.z()));
-    if (const auto* k = std::get_if<Capsule>(&shape))
-      return k->radius -
-             Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
-    if (const auto* e = std::get_if<Ellipsoid>(&shape)) return e->radii.minCoeff() - c.norm();
-    if (std::holds_alternative<ConvexHull>(shape)) {
-      double r = std::numeric_limits<double>::infinity();
-      for (const auto& p : planes) r = std::min(r, p.w() - p.head<3>().dot(c));
-      return r;
-    }
-    return -1.0;  // cone: no inner balls
-  };
+  auto radius = [&](const Eigen::Vector3d& c) { return boundaryDistance(shape, planes, c); };
   const double size = shapeMagnitude(shape) + box_c.norm();
   const double shrink = 1e-7 * size + 1e-12;
   int axis = 0;
@@ -93,10 +118,7 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
       if ((out[k].head<3>() - b.head<3>()).norm() < 0.5 * std::max(out[k].w(), b.w()))
         spread = false;
     if (!spread) continue;
-    bool inside = true;
-    for (const auto& u : dirs)
-      if (!(supportValue(shape, u) >= u.dot(b.head<3>()) + b.w())) inside = false;
-    if (inside) out[n++] = b;
+    if (ballInside(shape, dirs, b.head<3>(), b.w())) out[n++] = b;
   }
   return n;
 }

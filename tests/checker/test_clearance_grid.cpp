@@ -7,7 +7,8 @@
 // With obstacles turned away from the axes, the oriented boxes make the bound tighter, and it
 // stays a proof: each "clear" and each list is checked against the exact decision of the core
 // on the turned box itself (ballApartObb, the sweep's test of a ball against a turned obstacle,
-// likewise, down to a hair on either side of the true distance).
+// likewise, down to a hair on either side of the true distance). Its upper bounds (a box within
+// them of every point of a voxel) must be proofs in the same way.
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -18,6 +19,19 @@
 #include "dss/checker/clearance_grid.h"
 #include "dss/checker/obb.h"
 #include "dss/core/any_shape_query.h"
+
+namespace {
+// The k-th test point from a random one: every third moved onto a voxel face of the grid, then a
+// hair off it (either side), where the rounding of a lookup may pick the neighbouring voxel.
+Eigen::Vector3d pointFor(const dss::ClearanceGrid& grid, int k, Eigen::Vector3d c) {
+  if (k % 3 != 0) return c;
+  const int a = k % 9 / 3;
+  const double voxel = grid.voxelSize();
+  c[a] = grid.origin()[a] + voxel * std::round((c[a] - grid.origin()[a]) / voxel);
+  c[a] = std::nextafter(c[a], k % 2 ? 10.0 : -10.0);
+  return c;
+}
+}  // namespace
 
 BOOST_AUTO_TEST_SUITE(clearance_grid)
 
@@ -99,12 +113,8 @@ BOOST_AUTO_TEST_CASE(candidate_lists_hold_every_box_a_ball_can_touch) {
     BOOST_TEST(!grid.candidates(Eigen::Vector3d(std::nan(""), 0, 0), radius));
     const double voxel = grid.voxelSize();
     for (int k = 0; k < 4000; ++k) {
-      Eigen::Vector3d c(1.1 * u(rng), 1.1 * u(rng), 1.1 * u(rng));
-      if (k % 3 == 0) {  // on a voxel face, within rounding
-        const int a = k % 9 / 3;
-        c[a] = grid.origin()[a] + voxel * std::round((c[a] - grid.origin()[a]) / voxel);
-        c[a] = std::nextafter(c[a], k % 2 ? 10.0 : -10.0);
-      }
+      const Eigen::Vector3d c =
+          pointFor(grid, k, Eigen::Vector3d(1.1 * u(rng), 1.1 * u(rng), 1.1 * u(rng)));
       const std::uint64_t* cand = grid.candidates(c, radius);
       if (!cand) continue;
       for (std::size_t b = 0; b < boxes.size(); ++b) {
@@ -176,6 +186,28 @@ double distanceTo(const Eigen::Vector3d& c, const dss::Obb& b) {
   }
   return double(std::sqrt(d2));
 }
+// n turned boxes (box k axis-aligned where aligned(k)): their world boxes and oriented boxes.
+struct TurnedBoxes {
+  std::vector<dss::Aabb> boxes;
+  std::vector<dss::Obb> obbs;
+};
+template <class Aligned>
+TurnedBoxes turnedBoxes(std::mt19937_64& rng, int n, Aligned&& aligned) {
+  TurnedBoxes t;
+  for (int k = 0; k < n; ++k) {
+    const TurnedBox b = turnedBox(rng, aligned(k));
+    t.boxes.push_back(b.aabb);
+    t.obbs.push_back(b.obb);
+  }
+  return t;
+}
+// The region the grids of these tests cover.
+dss::Aabb testRegion() {
+  dss::Aabb region;
+  region.lower = Eigen::Vector3d(-1.2, -1.1, -1.0);
+  region.upper = Eigen::Vector3d(1.1, 1.2, 1.3);
+  return region;
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(oriented_boxes_tighten_the_bound_and_it_stays_a_proof) {
@@ -232,16 +264,8 @@ BOOST_AUTO_TEST_CASE(candidate_lists_with_oriented_boxes_hold_every_box_a_ball_c
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::size_t listed = 0, total = 0, listed_any = 0, listed_any_aabb = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    std::vector<dss::Aabb> boxes;
-    std::vector<dss::Obb> obbs;
-    for (int k = 0; k < 20 + 13 * trial; ++k) {
-      const TurnedBox t = turnedBox(rng, k % 7 == 0);
-      boxes.push_back(t.aabb);
-      obbs.push_back(t.obb);
-    }
-    dss::Aabb region;
-    region.lower = Eigen::Vector3d(-1.2, -1.1, -1.0);
-    region.upper = Eigen::Vector3d(1.1, 1.2, 1.3);
+    const auto [boxes, obbs] = turnedBoxes(rng, 20 + 13 * trial, [](int k) { return k % 7 == 0; });
+    const dss::Aabb region = testRegion();
     dss::ClearanceGrid grid(region, boxes, obbs, 4096);
     dss::ClearanceGrid plain(region, boxes, 4096);
     const double radius = 0.05 + 0.05 * trial;
@@ -307,10 +331,11 @@ BOOST_AUTO_TEST_CASE(ball_apart_from_a_turned_box_at_the_boundary) {
   BOOST_TEST(!dss::ballApartObb(t.obb.c, 0.0, t.obb));  // inside
 }
 
-// Every voxel holds the distance from its centre to the nearest obstacle less half the voxel's
-// diagonal, rounded down to the quantum (at most one quantum lower, for the rounding margin),
-// up to the largest byte: also in a scene wider than a byte's reach, where rows of voxels far
-// from a box skip it, and with turned boxes among axis-aligned ones.
+// Every voxel holds the distance from the voxel (a cube) to the nearest obstacle's world box, or
+// for a turned obstacle the larger of that and its oriented box's distance from the centre less
+// half the voxel's diagonal, rounded down to the quantum (at most one quantum lower, for the
+// rounding margin), up to the largest byte: also in a scene wider than a byte's reach, where
+// rows of voxels far from a box skip it, and with turned boxes among axis-aligned ones.
 BOOST_AUTO_TEST_CASE(every_voxel_holds_the_distance_at_its_centre_to_the_quantum) {
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 0.3);
@@ -347,11 +372,16 @@ BOOST_AUTO_TEST_CASE(every_voxel_holds_the_distance_at_its_centre_to_the_quantum
         for (double x = o.x() + 0.5 * size; x < region.upper.x() + 0.5 * size; x += size) {
           const Eigen::Vector3d c(x, y, z);
           double d = std::numeric_limits<double>::infinity();
-          for (std::size_t k = 0; k < boxes.size(); ++k)
-            d = std::min(d, obbs.empty() ? std::sqrt(dss::detail::sqDistPointAabb(c, boxes[k]))
-                                         : distanceTo(c, obbs[k]));
-          const double expected =
-              std::max(0.0, std::min(255.0, std::floor((d - half_diagonal) / q)));
+          for (std::size_t k = 0; k < boxes.size(); ++k) {
+            const dss::Aabb& b = boxes[k];
+            const Eigen::Vector3d gap =
+                ((c - b.center()).cwiseAbs() - 0.5 * (b.upper - b.lower)).array() - 0.5 * size;
+            double dk = gap.cwiseMax(0.0).norm();
+            if (!obbs.empty() && !obbs[k].axis_aligned)
+              dk = std::max(dk, distanceTo(c, obbs[k]) - half_diagonal);
+            d = std::min(d, dk);
+          }
+          const double expected = std::max(0.0, std::min(255.0, std::floor(d / q)));
           const double got = grid.bound(c) / q;
           ++visited;
           saturated += got == 255.0;
@@ -365,6 +395,94 @@ BOOST_AUTO_TEST_CASE(every_voxel_holds_the_distance_at_its_centre_to_the_quantum
     BOOST_TEST(positive > 0);
     if (spread > 1.0) BOOST_TEST(saturated > 0);
   }
+}
+
+// The upper bounds (buildUpper) must be proofs too: where one is known, some box lies within it
+// of every point of the voxel (checked against the exact distance and the core's decision on
+// the box itself, for points anywhere in the voxels and within a hair of their faces), and it
+// is known wherever a box is nearer than the cap by a voxel's diagonal. cell() holds both
+// bounds, and the same for a point given in a pose's frame; outside the grid and for NaN it
+// says nothing.
+BOOST_AUTO_TEST_CASE(upper_bounds_are_proofs_and_cells_hold_both_bounds) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double q = dss::ClearanceGrid::kQuantum;
+  const std::uint8_t unknown = dss::ClearanceGrid::kUnknown;
+  int known = 0, near = 0, near_known = 0, framed_same = 0, framed = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto [boxes, obbs] = turnedBoxes(rng, 1 + trial % 6, [](int k) { return k % 2 == 0; });
+    const dss::Aabb region = testRegion();
+    dss::ClearanceGrid grid(region, boxes, obbs, trial % 2 ? 4096 : 32768);
+    BOOST_TEST(!grid.hasCells());
+    const double cap = 0.1 + 0.05 * trial;
+    grid.buildUpper(obbs, cap);
+    BOOST_REQUIRE(grid.hasCells());
+    const double voxel = grid.voxelSize(), diagonal = std::sqrt(3.0) * voxel;
+    for (int k = 0; k < 4000; ++k) {
+      const Eigen::Vector3d c =
+          pointFor(grid, k, Eigen::Vector3d(1.1 * u(rng), 1.1 * u(rng), 1.1 * u(rng)));
+      const std::uint16_t v = grid.cell(c);
+      BOOST_TEST((v & 0xff) * q == grid.bound(c));
+      double d = std::numeric_limits<double>::infinity();
+      for (const auto& b : obbs) d = std::min(d, distanceTo(c, b));
+      const bool in_grid =
+          (c.array() >= region.lower.array()).all() && (c.array() < region.upper.array()).all();
+      if (in_grid && d + diagonal < cap) {
+        ++near;
+        near_known += (v >> 8) != unknown;
+      }
+      if ((v >> 8) == unknown) continue;
+      ++known;
+      const double upper = (v >> 8) * q;
+      BOOST_TEST(d <= upper, "trial " << trial << " point " << k);
+      BOOST_TEST(upper < cap + q);  // rounded up to the quantum
+      bool touches = false;
+      for (const auto& b : obbs) touches = touches || ballTouches(c, upper, b);
+      BOOST_TEST(touches, "trial " << trial << " point " << k);
+      // The same cell through a pose: a point of a frame X placed there.
+      Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+      X.linear() =
+          Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+      X.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng));
+      const Eigen::Vector3d p = X.inverse() * c;
+      const std::uint16_t w = grid.cell(grid.frame(X), p);
+      if (k % 3 != 0) {  // off the faces, the two roundings almost always agree
+        ++framed;
+        framed_same += w == grid.cell(X * p);
+      }
+      if ((w >> 8) != unknown) {
+        double dw = std::numeric_limits<double>::infinity();
+        for (const auto& b : obbs) dw = std::min(dw, distanceTo(X * p, b));
+        BOOST_TEST(dw <= (w >> 8) * q);
+      }
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    BOOST_TEST(grid.cell(Eigen::Vector3d(nan, 0, 0)) == dss::ClearanceGrid::kOutside);
+    BOOST_TEST(grid.cell(Eigen::Vector3d(0, 0, 5.0)) == dss::ClearanceGrid::kOutside);
+    BOOST_TEST(grid.cell(grid.frame(Eigen::Isometry3d::Identity()), Eigen::Vector3d(0, nan, 0)) ==
+               dss::ClearanceGrid::kOutside);
+  }
+  BOOST_TEST_MESSAGE("upper bounds: " << known << " points known, " << near_known << " of " << near
+                                      << " within the cap less a diagonal");
+  BOOST_TEST(known > 2000);
+  BOOST_TEST(near_known == near);
+  BOOST_TEST(framed_same >= framed * 99 / 100);
+  // Without boxes: only the lower bounds, every upper one unknown.
+  dss::Aabb region;
+  region.lower = Eigen::Vector3d::Constant(-1.0);
+  region.upper = Eigen::Vector3d::Constant(1.0);
+  const TurnedBox t = turnedBox(rng, true);
+  dss::ClearanceGrid grid(region, {t.aabb}, {t.obb});
+  grid.buildUpper({}, 0.5);
+  BOOST_REQUIRE(grid.hasCells());
+  BOOST_TEST((grid.cell(t.obb.c) >> 8) == unknown);
+  BOOST_TEST((grid.cell(Eigen::Vector3d(0.9, 0.9, 0.9)) & 0xff) * q ==
+             grid.bound(Eigen::Vector3d(0.9, 0.9, 0.9)));
+  // An empty grid: nothing at all.
+  dss::ClearanceGrid empty;
+  empty.buildUpper({t.obb}, 0.5);
+  BOOST_TEST(!empty.hasCells());
+  BOOST_TEST(empty.cell(Eigen::Vector3d::Zero()) == dss::ClearanceGrid::kOutside);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -165,6 +165,51 @@ BOOST_AUTO_TEST_CASE(dss_and_fcl_hull_agree_on_random_states) {
   }
 }
 
+// An obstacle the scene allows one link to touch stays allowed to it however deep the link goes
+// into it, while the other links still collide with it (the clearance grid's proofs of
+// collision count only obstacles no link may touch): the mobile base with a low block in its
+// aisle that its base link may drive through answers as fcl-hull on the same model, and some
+// of its states are free only because of that entry.
+BOOST_AUTO_TEST_CASE(an_obstacle_allowed_to_one_link_stays_allowed_deep_inside_it) {
+  const Loaded l = load(kMobile);
+  dss::Scene scene = dss::loadScene(kMobile.dir + "/" + kMobile.scene);
+  dss::Obstacle block;
+  block.name = block.object_id = "block";
+  block.shape = dss::Box{Eigen::Vector3d(1.0, 0.7, 0.125)};  // z -0.05 .. 0.2, the deck's height
+  block.X_WO.translation() = Eigen::Vector3d(4.5, 0.0, 0.075);
+  block.X_FO = block.X_WO;
+  block.frame_resolved = true;
+  scene.obstacles.push_back(block);
+  dss::Scene allowing = scene;
+  allowing.allowed_collisions.allow("base_link", "block");
+  dss::CollisionModelOptions every_chain;  // whether or not they pay here
+  every_chain.chain_min_settled = 0.0;
+  const dss::Problem with_block =
+      dss::makeProblem(l.robot, std::move(scene), l.request.group_name, l.start, every_chain);
+  const dss::Problem allowed =
+      dss::makeProblem(l.robot, std::move(allowing), l.request.group_name, l.start, every_chain);
+  // The base link's chain runs (its inner balls could prove collisions with the block).
+  int base_chain = -1;
+  for (const auto& slot : allowed.model->slots())
+    if (allowed.model->robot().links[slot.link].name == "base_link") base_chain = slot.num_chain;
+  BOOST_TEST(base_chain > 0);
+  const int n = 4000;
+  const dss_test::Agreement t = dss_test::dssAgainstFclHull(allowed, n);
+  BOOST_TEST(t.differ == 0);
+  BOOST_TEST(t.colliding > 0);
+  auto with = dss::makeStateChecker(allowed.model, {"dss"});
+  auto without = dss::makeStateChecker(with_block.model, {"dss"});
+  ob::StateSamplerPtr sampler = allowed.map->space()->allocStateSampler();
+  ob::ScopedState<> s(allowed.map->space());
+  int freed = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::vector<double> q = sample(allowed, sampler, s.get());
+    freed += with->check(q.data()) == dss::StateVerdict::kFree &&
+             without->check(q.data()) == dss::StateVerdict::kColliding;
+  }
+  BOOST_TEST(freed > 10);
+}
+
 BOOST_AUTO_TEST_CASE(continuous_validator_misses_nothing_a_dense_check_finds) {
   for (const Case* c : {&kMobile, &kFlyer}) {
     const Loaded l = load(*c);

@@ -20,7 +20,7 @@
 #include <emmintrin.h>
 #endif
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "dss/checker/obb.h"
 #include "dss/scene/obstacle.h"
@@ -51,6 +51,35 @@ class ClearanceGrid {
   double bound(const Eigen::Vector3d& c) const {
     const std::uint8_t* v = voxel(c);
     return v ? *v * kQuantum : 0.0;
+  }
+
+  /// Upper bounds: for every voxel, a bound on the distance from any of its points to the
+  /// nearest of `boxes` (each exactly an obstacle's shape, and one that every link checked
+  /// against the scene must not touch), rounded up to the quantum, kept where it is at most
+  /// `cap` (elsewhere unknown). A ball of radius rho inside a link whose centre has an upper
+  /// bound of at most rho + padding is then within the padding of an obstacle: a collision.
+  /// Stored with the lower bounds, two bytes per voxel (cell()).
+  void buildUpper(const std::vector<Obb>& boxes, double cap);
+  bool hasCells() const { return !cells_.empty(); }
+  /// The bounds of c's voxel in quanta: the lower one in the low byte, the upper one in the
+  /// high byte (kUnknown where unknown); kOutside (0 and kUnknown) when c is outside the grid
+  /// or NaN. Needs hasCells().
+  static constexpr std::uint8_t kUnknown = 255;
+  static constexpr std::uint16_t kOutside = std::uint16_t(kUnknown) << 8;
+  std::uint16_t cell(const Eigen::Vector3d& c) const {
+    return cellAtVoxel((c - below_) * inv_size_);
+  }
+  /// A pose X composed with the grid's voxel coordinates, for cells of many points of one
+  /// frame: cell(f, p) is cell(X p) with one affine map per point.
+  struct Frame {
+    Eigen::Matrix3d A;
+    Eigen::Vector3d b;
+  };
+  Frame frame(const Eigen::Isometry3d& X) const {
+    return {inv_size_ * X.linear(), (X.translation() - below_) * inv_size_};
+  }
+  std::uint16_t cell(const Frame& f, const Eigen::Vector3d& p) const {
+    return cellAtVoxel(f.A * p + f.b);
   }
 
   /// Candidate lists: for every voxel, the boxes that a ball of radius up to `radius` centred
@@ -85,17 +114,24 @@ class ClearanceGrid {
   }
   /// The voxel holding c, or null outside the grid (and for NaN).
   const std::uint8_t* voxel(const Eigen::Vector3d& c) const {
-    // Coordinates counted from one voxel below the grid: a voxel index i + 1 in [1, n], so that
-    // one unsigned comparison per axis rejects the outside (negative, beyond n, and the
-    // INT_MIN that the conversion gives for NaN and huge values). A point within rounding of
-    // a voxel face may land in the neighbour: the stored bounds keep a margin far above that.
-    const int ix = toIndex((c.x() - below_.x()) * inv_size_);
-    const int iy = toIndex((c.y() - below_.y()) * inv_size_);
-    const int iz = toIndex((c.z() - below_.z()) * inv_size_);
-    const unsigned x = static_cast<unsigned>(ix) - 1u, y = static_cast<unsigned>(iy) - 1u,
-                   z = static_cast<unsigned>(iz) - 1u;
-    if (!((x < count_[0]) & (y < count_[1]) & (z < count_[2]))) return nullptr;
-    return &bound_[z * stride_z_ + y * stride_y_ + x];
+    const std::ptrdiff_t i = index((c - below_) * inv_size_);
+    return i < 0 ? nullptr : &bound_[static_cast<std::size_t>(i)];
+  }
+  /// The index of the voxel at voxel coordinates u, counted from one voxel below the grid
+  /// ((c - below_) / size), or -1 outside. A voxel index i + 1 in [1, n], so that one unsigned
+  /// comparison per axis rejects the outside (negative, beyond n, and the INT_MIN that the
+  /// conversion gives for NaN and huge values). A point within rounding of a voxel face may
+  /// land in the neighbour: the stored bounds keep a margin far above that.
+  std::ptrdiff_t index(const Eigen::Vector3d& u) const {
+    const unsigned x = static_cast<unsigned>(toIndex(u.x())) - 1u,
+                   y = static_cast<unsigned>(toIndex(u.y())) - 1u,
+                   z = static_cast<unsigned>(toIndex(u.z())) - 1u;
+    if (!((x < count_[0]) & (y < count_[1]) & (z < count_[2]))) return -1;
+    return static_cast<std::ptrdiff_t>(z * stride_z_ + y * stride_y_ + x);
+  }
+  std::uint16_t cellAtVoxel(const Eigen::Vector3d& u) const {
+    const std::ptrdiff_t i = index(u);
+    return i < 0 ? kOutside : cells_[static_cast<std::size_t>(i)];
   }
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
@@ -105,7 +141,8 @@ class ClearanceGrid {
   Eigen::Vector3d below_ = Eigen::Vector3d::Zero();  // origin_ minus one voxel per axis
   std::size_t stride_y_ = 0, stride_z_ = 0;
   std::vector<std::uint8_t> bound_;
-  std::size_t words_ = 0;  // candidate words per voxel (0: none built)
+  std::vector<std::uint16_t> cells_;  // empty until buildUpper
+  std::size_t words_ = 0;             // candidate words per voxel (0: none built)
   double candidate_radius_ = 0.0;
   std::vector<std::uint64_t> candidates_;
 };

@@ -62,6 +62,11 @@ struct CollisionModelOptions {
   /// group, the ball rules it out often enough to save at least this many per-pair sphere
   /// tests per state (the ball test itself costs about one). 0 keeps every ball.
   double pair_block_min_saving = 1.5;
+  /// Sphere chains (sphere_chain.h): a link keeps its chain when, on 256 random states of
+  /// the group where the clearance grid does not clear its sphere, the chain settles the link
+  /// (clear, or a collision) on at least this fraction of them, times 1 + points / 8 (its
+  /// lookups must save more than they cost). 0 keeps every chain.
+  double chain_min_settled = 0.25;
   /// The base-scene table (base_scene_table.h) of a planar base: at most about this many
   /// cells (0: no table; one byte each), certified at this scene padding (a checker uses its
   /// colliding cells at a scene padding of at least this, its free ones at most this).
@@ -86,6 +91,16 @@ class CollisionModel {
     bool identity_PS = false;
     Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
   };
+  /// A point of an element's chain of balls (sphere_chain.h), in the link frame and in the
+  /// frame of the slot's pose link, with the radii of its outer ball and of its inner ball
+  /// (-infinity: none); `element` counts from the slot's first element.
+  struct ChainPoint {
+    Eigen::Vector3d c_L = Eigen::Vector3d::Zero();
+    Eigen::Vector3d c_P = Eigen::Vector3d::Zero();
+    double outer = 0.0;
+    double inner = 0.0;
+    int element = 0;
+  };
   /// A link with geometry.
   struct Slot {
     int link = -1;
@@ -97,6 +112,11 @@ class CollisionModel {
     int num_elements = 0;
     Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  ///< bounding sphere of all elements
     double radius = 0.0;
+    /// Its elements' chain points, chainPoints()[first_chain, first_chain + num_chain), the
+    /// farthest from the sphere's centre first; none when they add nothing to the sphere (or
+    /// the slot has more than 64 elements).
+    int first_chain = 0;
+    int num_chain = 0;
     std::vector<int> obstacles;  ///< kept obstacles this slot is checked against
     BoxSoa boxes;                ///< their world boxes, in the same order
     /// The same obstacles as bits (kept obstacle indices), when the clearance grid has
@@ -150,6 +170,7 @@ class CollisionModel {
   const std::vector<double>& held() const { return held_; }
   const std::vector<Element>& elements() const { return elements_; }
   const std::vector<Slot>& slots() const { return slots_; }
+  const std::vector<ChainPoint>& chainPoints() const { return chain_; }
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
   const SelfPairTables& selfTables() const { return self_tables_; }
   const std::vector<PairBlock>& pairBlocks() const { return pair_blocks_; }
@@ -181,6 +202,10 @@ class CollisionModel {
   RobotModel foldedRobot() const;
   void buildBounds();
   void buildSlots();
+  /// The slot's chain points (sphere_chain.h), when they add to its sphere.
+  void addChain(Slot& s);
+  /// Drops the chains that do not pay on random states of the group (after the grid).
+  void keepPayingChains(double min_settled);
   void placeOnPoseLinks();
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
   void buildSelfPairs(const Srdf* srdf, const CollisionModelOptions& options);
@@ -207,6 +232,7 @@ class CollisionModel {
   std::vector<int> quaternions_;  ///< the first value of each quaternion
   std::vector<Element> elements_;
   std::vector<Slot> slots_;
+  std::vector<ChainPoint> chain_;
   std::vector<SelfPair> self_pairs_;
   std::vector<PairBlock> pair_blocks_;
   SelfPairTables self_tables_;

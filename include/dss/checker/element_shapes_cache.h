@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "dss/checker/sphere_chain.h"
 #include "dss/robot/robot_model.h"
 
 namespace dss {
@@ -33,6 +34,8 @@ struct ElementShapes {
   bool has_inner_box = false;
   Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
   Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
+  /// Balls along the element, for the clearance grid (sphere_chain.h), in the shape frame.
+  SphereChain chain;
 };
 
 /// The bounds of one element (not cached).

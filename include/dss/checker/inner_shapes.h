@@ -21,6 +21,12 @@ namespace dss {
 int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
                Eigen::Vector4d* out, int max_out);
 
+/// For each of the n points c[k] (shape frame), the radius of a ball about it inside `shape`:
+/// the distance to the boundary (for a hull: to its facet planes) reduced by a relative 1e-7 of
+/// the shape's size, each ball checked as innerBalls checks its own; 0 for a point outside or
+/// on the boundary, and for cones and flat hulls.
+void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r);
+
 /// True when the ball (c, r) comes within `pad` of the box (rotation, centre, half extents),
 /// with a relative margin against rounding: a safe "colliding". NaN anywhere gives false.
 inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R,

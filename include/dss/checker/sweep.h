@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "dss/checker/collision_model.h"
@@ -114,6 +115,8 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   if (center_store.size() < num_slots) center_store.resize(num_slots);
   Eigen::Vector3d* const centers = center_store.data();
   const Slot* const slots = model.slots().data();
+  using ChainPoint = CollisionModel::ChainPoint;
+  const ChainPoint* const chain = model.chainPoints().data();
   // Robot vs scene.
   for (std::size_t k = 0; k < num_slots; ++k) {
     const Slot& s = slots[k];
@@ -124,6 +127,26 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     const Eigen::Vector3d& c = centers[k];
     const double r = s.radius + scene_padding;
     if (grid.clear(c, r)) continue;
+    // The chains of balls along the elements (sphere_chain.h): an element whose outer balls
+    // the grid clears is clear; an inner ball within the padding of an obstacle (the grid's
+    // upper bound, for narrow phases that see the elements' own shapes) is a collision.
+    std::uint64_t open = ~std::uint64_t(0);  // the elements left to test, one bit each
+    if (s.num_chain > 0) {
+      open = 0;
+      const double deep_padding =
+          opt.inner_shapes ? scene_padding : -std::numeric_limits<double>::infinity();
+      const ClearanceGrid::Frame frame = grid.frame(X);
+      const ChainPoint* const first = chain + s.first_chain;
+      for (const ChainPoint* p = first; p != first + s.num_chain; ++p) {
+        const std::uint16_t v = grid.cell(frame, kFolded ? p->c_P : p->c_L);
+        // The farthest points first: a collision found there ends the state.
+        const double lower = (v & 0xff) * ClearanceGrid::kQuantum;
+        const double upper = (v >> 8) * ClearanceGrid::kQuantum;
+        if (((v >> 8) != ClearanceGrid::kUnknown) & (upper <= p->inner + deep_padding)) return true;
+        open |= std::uint64_t(!(lower > p->outer + scene_padding)) << p->element;
+      }
+      if (!open) continue;
+    }
     // Element e against obstacle o, whose box the element's sphere reaches: the stages.
     auto pair = [&](int e, int o) {
       const Element& el = elements[e];
@@ -205,6 +228,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
     // sphere reaches, each against the elements whose own spheres reach its box.
     const auto element = [&](int o) {
       for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+        if (!((open >> (e - s.first_element)) & 1)) continue;
         const double re = elements[e].radius + scene_padding;
         const Eigen::Vector3d ce = X * elementCenter(elements[e]);
         if (detail::sqDistPointAabb(ce, boxes[o]) > re * re || !reachesObb(ce, re, o)) continue;
