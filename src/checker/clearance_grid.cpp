@@ -38,23 +38,23 @@ class Measure {
   const std::vector<Obb>& obbs_;
   double reach_ = -1.0;  // negative: no turned obstacle
 };
-// One row of voxels (centres cx[0 .. n), half size `half`) against one box: d2[x] = min(d2[x],
-// the squared distance from the voxel to the world box (lx, ux along x; dy2 + dz2, the voxel's
-// squared distances along the other axes)), and for a turned box (kTurned) the larger of that
-// and the square of the oriented box's distance from the centre less `half_diagonal` (0 at
-// least), with the centre's frame coordinates t_a = rx[a] (cx + px0) + ryz[a]. Two voxels at
-// a time with SSE2; max and min as the scalar tail forms them (b < a ? a : b is max(a, b) for
-// these finite values; an oriented distance that is NaN leaves the world box's, a NaN distance
-// leaves d2 as it is).
+// One row of voxels (centres cx[0 .. n)) against one box: d2[x] = min(d2[x], the squared
+// distance from the voxel's cube of half size `half` (0: its centre) to the world box (lx, ux
+// along x; dy2 + dz2, the squared distances along the other axes)), and for a turned box
+// (kTurned) the larger of that and the oriented box's squared distance from the centre, with
+// the centre's frame coordinates t_a = rx[a] (cx + px0) + ryz[a]. Two voxels at a time with
+// SSE2; max and min as the scalar tail forms them (b < a ? a : b is max(a, b) for these finite
+// values; an oriented distance that is NaN leaves the world box's, a NaN distance leaves d2 as
+// it is).
 template <bool kTurned>
 void row(const double* cx, double* d2, int n, double half, double lx, double ux, double dy2,
-         double dz2, double half_diagonal = 0.0, double px0 = 0.0, const double* rx = nullptr,
-         const double* ryz = nullptr, const double* h = nullptr) {
+         double dz2, double px0 = 0.0, const double* rx = nullptr, const double* ryz = nullptr,
+         const double* h = nullptr) {
   int x = 0;
 #if defined(__SSE2__)
   const __m128d vlx = _mm_set1_pd(lx - half), vux = _mm_set1_pd(ux + half), vdy2 = _mm_set1_pd(dy2),
                 vdz2 = _mm_set1_pd(dz2), zero = _mm_setzero_pd(), vpx0 = _mm_set1_pd(px0),
-                sign = _mm_set1_pd(-0.0), vhd = _mm_set1_pd(half_diagonal);
+                sign = _mm_set1_pd(-0.0);
   __m128d vrx[3], vryz[3], vh[3];
   if constexpr (kTurned)
     for (int a = 0; a < 3; ++a) {
@@ -75,8 +75,7 @@ void row(const double* cx, double* d2, int n, double half, double lx, double ux,
       }
       const __m128d ob2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(o[0], o[0]), _mm_mul_pd(o[1], o[1])),
                                      _mm_mul_pd(o[2], o[2]));
-      const __m128d ob = _mm_max_pd(_mm_sub_pd(_mm_sqrt_pd(ob2), vhd), zero);
-      v = _mm_max_pd(_mm_mul_pd(ob, ob), v);  // v when ob is NaN
+      v = _mm_max_pd(ob2, v);  // v when ob2 is NaN
     }
     _mm_storeu_pd(d2 + x, _mm_min_pd(v, _mm_loadu_pd(d2 + x)));  // d2 when v is NaN
   }
@@ -89,8 +88,8 @@ void row(const double* cx, double* d2, int n, double half, double lx, double ux,
       const double o0 = std::max(std::abs(rx[0] * px + ryz[0]) - h[0], 0.0);
       const double o1 = std::max(std::abs(rx[1] * px + ryz[1]) - h[1], 0.0);
       const double o2 = std::max(std::abs(rx[2] * px + ryz[2]) - h[2], 0.0);
-      const double ob = std::max(std::sqrt((o0 * o0 + o1 * o1) + o2 * o2) - half_diagonal, 0.0);
-      v = ob * ob > v ? ob * ob : v;
+      const double ob2 = (o0 * o0 + o1 * o1) + o2 * o2;
+      v = ob2 > v ? ob2 : v;
     }
     d2[x] = v < d2[x] ? v : d2[x];
   }
@@ -123,44 +122,50 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   stride_y_ = static_cast<std::size_t>(n[0]);
   stride_z_ = stride_y_ * static_cast<std::size_t>(n[1]);
   bound_.assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0);
-  // The distance from the voxel (a cube) to a box's world box, exact for the two boxes; for a
-  // turned obstacle also its oriented box's distance from the voxel's centre less half the
-  // voxel's diagonal (every point of the voxel lies that close to the centre), when larger.
-  // A margin far above the rounding of these few operations is taken off before rounding
-  // down to the quantum, with that of the oriented-box distances.
+  // Two bounds per voxel, the smaller kept: for obstacles along the axes the exact distance
+  // from the voxel's cube to their boxes; for turned obstacles the larger of the distances
+  // from the voxel's centre to their world box and to their oriented box, less half the
+  // voxel's diagonal (every point of the voxel lies that close to the centre). A margin far
+  // above the rounding of these few operations is taken off before rounding down to the
+  // quantum, with that of the oriented-box distances.
   const double half = 0.5 * size;
   const double half_diagonal = 0.5 * std::sqrt(3.0) * size;
   const Measure measure(obbs);
-  // Row by row along x: each box's squared distance to the row's voxel centres in one pass
-  // (the x part per voxel, the y and z parts once per row). A box whose distance to the row's
-  // line already exceeds what a byte can hold (plus the half diagonal and every margin) cannot
-  // lower any voxel of the row below the largest value, and is skipped.
+  // Row by row along x: each box's squared distance to the row's voxels in one pass (the x
+  // part per voxel, the y and z parts once per row). A box whose distance to the row's line
+  // already exceeds what a byte can hold (plus the half diagonal and every margin) cannot lower
+  // any voxel of the row below the largest value, and is skipped.
   auto marginAt = [&](const Eigen::Vector3d& c) {
     return 1e-9 * (1.0 + c.cwiseAbs().maxCoeff() + half_diagonal) + measure.rounding(c);
   };
-  std::vector<double> cx(static_cast<std::size_t>(n[0])), d2(static_cast<std::size_t>(n[0]));
+  const std::size_t nx = static_cast<std::size_t>(n[0]);
+  std::vector<double> cx(nx), d2(nx), d2_turned(nx);
   for (int x = 0; x < n[0]; ++x) cx[x] = origin_.x() + size * (x + 0.5);
   const double cx_max = std::max(std::abs(cx.front()), std::abs(cx.back()));
   std::size_t i = 0;
   for (int z = 0; z < n[2]; ++z) {
     const double cz = origin_.z() + size * (z + 0.5);
-    for (int y = 0; y < n[1]; ++y, i += static_cast<std::size_t>(n[0])) {
+    for (int y = 0; y < n[1]; ++y, i += nx) {
       const double cy = origin_.y() + size * (y + 0.5);
       // The margins grow with |c|: the row's largest, at its farthest centre.
       const double saturated =
           256.0 * kQuantum + half_diagonal + 2.0 * marginAt(Eigen::Vector3d(cx_max, cy, cz));
       const double skip2 = saturated * saturated;
       std::fill(d2.begin(), d2.end(), std::numeric_limits<double>::infinity());
+      std::fill(d2_turned.begin(), d2_turned.end(), std::numeric_limits<double>::infinity());
+      bool any_turned = false;
       for (std::size_t k = 0; k < boxes.size(); ++k) {
         const Aabb& b = boxes[k];
+        const bool turned = measure.turned(k);
+        const double grow = turned ? 0.0 : half;  // the centre's distance, or the cube's
         const double dy =
-            std::max(std::max((b.lower.y() - half) - cy, cy - (b.upper.y() + half)), 0.0);
+            std::max(std::max((b.lower.y() - grow) - cy, cy - (b.upper.y() + grow)), 0.0);
         const double dz =
-            std::max(std::max((b.lower.z() - half) - cz, cz - (b.upper.z() + half)), 0.0);
+            std::max(std::max((b.lower.z() - grow) - cz, cz - (b.upper.z() + grow)), 0.0);
         const double dy2 = dy * dy, dz2 = dz * dz;
         if (dy2 + dz2 > skip2) continue;
         const double lx = b.lower.x(), ux = b.upper.x();
-        if (measure.turned(k)) {
+        if (turned) {
           // The larger of the distances to the world box and to the oriented box (a NaN of the
           // latter leaves the former). The oriented box's frame coordinates t_a = R(0, a) px +
           // (R(1, a) py + R(2, a) pz): only px varies along the row. Their rounding is far
@@ -172,14 +177,17 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
             ryz[a] = ob.R(1, a) * py + ob.R(2, a) * pz;
             rx[a] = ob.R(0, a);
           }
-          row<true>(cx.data(), d2.data(), n[0], half, lx, ux, dy2, dz2, half_diagonal, -ob.c.x(),
-                    rx, ryz, ob.h.data());
+          row<true>(cx.data(), d2_turned.data(), n[0], 0.0, lx, ux, dy2, dz2, -ob.c.x(), rx, ryz,
+                    ob.h.data());
+          any_turned = true;
         } else {
           row<false>(cx.data(), d2.data(), n[0], half, lx, ux, dy2, dz2);
         }
       }
       for (int x = 0; x < n[0]; ++x) {
-        const double lower = std::sqrt(d2[x]) - marginAt(Eigen::Vector3d(cx[x], cy, cz));
+        double distance = std::sqrt(d2[x]);
+        if (any_turned) distance = std::min(distance, std::sqrt(d2_turned[x]) - half_diagonal);
+        const double lower = distance - marginAt(Eigen::Vector3d(cx[x], cy, cz));
         if (!(lower > 0.0)) continue;  // also NaN
         bound_[i + static_cast<std::size_t>(x)] =
             static_cast<std::uint8_t>(std::min(255.0, std::floor(lower / kQuantum)));
@@ -188,61 +196,80 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   }
 }
 
+namespace {
+// An upper bound on the distance from any point of a voxel (a cube of half size `half`) to a
+// box, in the box's frame axis by axis: a coordinate of the cube reaches at most
+// |t_a| + half |R_a|_1 from the box's centre, t being the cube's centre in the box's frame
+// (exactly |t_a| + half for a box along the axes, whose farthest corner attains the bound). A
+// margin far above the rounding of the centre, of the box frame and of voxel() (which may
+// pick a neighbour for a point within rounding of a face) is added.
+class FarthestFromBox {
+ public:
+  FarthestFromBox(const Obb& b, double half)
+      : Rt_(b.R.transpose()),
+        c_(b.c),
+        h_(b.h),
+        reach_(half * b.R.cwiseAbs().colwise().sum().transpose()),
+        margin_(1e-9 * (1.0 + 2.0 * b.c.norm() + b.h.sum() + 2.0 * half) + 1e-12) {}
+  /// NaN for a box with a non-finite entry.
+  double operator()(const Eigen::Vector3d& center) const {
+    const Eigen::Vector3d t = (Rt_ * (center - c_)).cwiseAbs();
+    return (t + reach_ - h_).cwiseMax(0.0).norm() + margin_ + 3e-9 * center.cwiseAbs().maxCoeff();
+  }
+
+ private:
+  Eigen::Matrix3d Rt_;
+  Eigen::Vector3d c_, h_, reach_;
+  double margin_;
+};
+}  // namespace
+
+std::uint8_t ClearanceGrid::upperAt(const Eigen::Vector3d& c, const std::vector<Obb>& boxes,
+                                    double cap) const {
+  const std::ptrdiff_t i = index((c - below_) * inv_size_);
+  if (i < 0) return kUnknown;
+  const std::size_t k = static_cast<std::size_t>(i);
+  const std::size_t x = k % stride_y_, y = k % stride_z_ / stride_y_, z = k / stride_z_;
+  const Eigen::Vector3d center = origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+  double best = std::numeric_limits<double>::infinity();
+  for (const Obb& b : boxes) best = std::min(best, FarthestFromBox(b, 0.5 * size_)(center));
+  const double stored = std::min(cap, (kUnknown - 1) * kQuantum);
+  return best <= stored ? static_cast<std::uint8_t>(std::ceil(best / kQuantum)) : kUnknown;
+}
+
 void ClearanceGrid::buildUpper(const std::vector<Obb>& boxes, double cap) {
   cells_.clear();
   if (bound_.empty()) return;
   std::vector<std::uint8_t> upper(bound_.size(), kUnknown);
-  const auto store = [&] {
-    cells_.resize(bound_.size());
-    for (std::size_t i = 0; i < bound_.size(); ++i)
-      cells_[i] = static_cast<std::uint16_t>(bound_[i] | (upper[i] << 8));
-  };
-  if (boxes.empty() || !(cap > 0.0) || !std::isfinite(cap)) return store();
-  // The distance to a box is convex: over a voxel it is largest at a corner. A margin far
-  // above the rounding of the corners, of the box frame and of voxel() (which may pick a
-  // neighbour for a point within rounding of a face) is added before rounding up to the
-  // quantum.
-  const double half_diagonal = 0.5 * std::sqrt(3.0) * size_;
   const double stored = std::min(cap, (kUnknown - 1) * kQuantum);
   for (const Obb& b : boxes) {
-    if (!b.R.allFinite() || !b.c.allFinite() || !b.h.allFinite() || !(b.h.minCoeff() >= 0.0))
+    if (!(stored > 0.0) || !b.R.allFinite() || !b.c.allFinite() || !b.h.allFinite() ||
+        !(b.h.minCoeff() >= 0.0))
       continue;
-    // The voxels whose centres lie within `stored` plus the half diagonal of the box's world
-    // box (a box at an angle reaches |R| h along each world axis).
-    const Eigen::Vector3d reach = b.R.cwiseAbs() * b.h;
+    // The voxels whose centres lie within `stored` plus a voxel of the box's world box (a box
+    // at an angle reaches |R| h along each world axis); beyond, no bound is kept.
+    const Eigen::Vector3d extent = b.R.cwiseAbs() * b.h;
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      const double grow = reach[a] + stored + half_diagonal + size_;
+      const double grow = extent[a] + stored + size_;
       const double l = std::floor((b.c[a] - grow - origin_[a]) * inv_size_);
       const double h = std::ceil((b.c[a] + grow - origin_[a]) * inv_size_);
       lo[a] = static_cast<int>(std::max(0.0, std::min(l, double(count_[a]))));
       hi[a] = static_cast<int>(std::max(0.0, std::min(h, double(count_[a]))));
     }
+    const FarthestFromBox farthest(b, 0.5 * size_);
     for (int z = lo[2]; z < hi[2]; ++z)
       for (int y = lo[1]; y < hi[1]; ++y)
         for (int x = lo[0]; x < hi[0]; ++x) {
-          const Eigen::Vector3d c = origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-          // The corners in the box's frame: its centre's coordinates plus or minus the half
-          // voxel along each of the frame's axes.
-          const Eigen::Vector3d t = b.R.transpose() * (c - b.c);
-          const Eigen::Matrix3d half_voxel = 0.5 * size_ * b.R.transpose();
-          double d2 = 0.0;
-          for (int k = 0; k < 8; ++k) {
-            const Eigen::Vector3d corner =
-                t + half_voxel *
-                        Eigen::Vector3d(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0);
-            d2 = std::max(d2, (corner.cwiseAbs() - b.h).cwiseMax(0.0).squaredNorm());
-          }
-          const double margin = 1e-9 * (1.0 + 3.0 * c.cwiseAbs().maxCoeff() + 2.0 * b.c.norm() +
-                                        b.h.sum() + half_diagonal) +
-                                1e-12;
-          const double bound = std::sqrt(d2) + margin;
-          if (!(bound <= stored)) continue;
+          const double d = farthest(origin_ + size_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5));
+          if (!(d <= stored)) continue;
           std::uint8_t& u = upper[z * stride_z_ + y * stride_y_ + x];
-          u = std::min(u, static_cast<std::uint8_t>(std::ceil(bound / kQuantum)));
+          u = std::min(u, static_cast<std::uint8_t>(std::ceil(d / kQuantum)));
         }
   }
-  store();
+  cells_.resize(bound_.size());
+  for (std::size_t i = 0; i < bound_.size(); ++i)
+    cells_[i] = static_cast<std::uint16_t>(bound_[i] | (upper[i] << 8));
 }
 
 void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radius,

@@ -78,8 +78,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   computeReach(X_WL);
   placeOnPoseLinks();
   buildSelfPairs(srdf, options);
-  pruneObstacles(options);
-  keepPayingChains(options.chain_min_settled);
+  const std::vector<Obb> untouchable = pruneObstacles(options);
+  keepPayingChains(options.chain_min_settled, untouchable);
   buildSelfTables(options);
   pair_blocks_ = buildPairBlocks(*this, options.pair_block_min_saving);
   base_table_ = BaseSceneTable(*this, options.base_table_cells, options.base_table_padding);
@@ -152,7 +152,8 @@ void CollisionModel::buildBounds() {
 void CollisionModel::buildSlots() {
   const RobotModel& m = *robot_;
   // The elements' own bounds, computed once per robot (element_shapes_cache.h).
-  const std::shared_ptr<const std::vector<ElementShapes>> shapes = cachedElementShapes(robot_);
+  const std::shared_ptr<const std::vector<CachedElementShapes>> shapes =
+      cachedElementShapes(robot_);
   std::size_t next_shape = 0;
   for (std::size_t l = 0; l < m.links.size(); ++l) {
     const RobotLink& link = m.links[l];
@@ -186,24 +187,23 @@ void CollisionModel::buildSlots() {
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e)
       s.radius =
           std::max(s.radius, (elements_[e].center_L - s.center_L).norm() + elements_[e].radius);
-    addChain(s);
+    addChain(s, &shapes->at(next_shape - link.collisions.size()));
     slots_.push_back(s);
   }
 }
 
-void CollisionModel::addChain(Slot& s) {
+void CollisionModel::addChain(Slot& s, const CachedElementShapes* cached) {
   constexpr int kMaxChainElements = 64;  // one bit each in the sweep
   if (s.num_elements > kMaxChainElements) return;
   std::vector<ChainPoint> points;
   bool adds = false;  // a ball smaller than the slot's sphere, or an inner ball
   for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-    const Element& el = elements_[e];
-    for (int k = 0; k < el.chain.num_points; ++k) {
+    const SphereChain& chain = cached[e - s.first_element].chain;
+    for (int k = 0; k < chain.num_points; ++k) {
       ChainPoint p;
-      p.c_L = el.source->X_LS * el.chain.center_S[k];
-      p.outer = el.chain.outer[k];
-      p.inner =
-          el.chain.inner[k] > 0.0 ? el.chain.inner[k] : -std::numeric_limits<double>::infinity();
+      p.c_L = elements_[e].source->X_LS * chain.center_S[k];
+      p.outer = chain.outer[k];
+      p.inner = chain.inner[k] > 0.0 ? chain.inner[k] : -std::numeric_limits<double>::infinity();
       p.element = e - s.first_element;
       adds = adds || p.inner > 0.0 || p.outer < s.radius * (1.0 - 1e-6);
       points.push_back(p);
@@ -218,62 +218,74 @@ void CollisionModel::addChain(Slot& s) {
   chain_.insert(chain_.end(), points.begin(), points.end());
 }
 
-void CollisionModel::keepPayingChains(double min_settled) {
+void CollisionModel::keepPayingChains(double min_settled, const std::vector<Obb>& untouchable) {
+  if (chain_.empty()) return;
+  // The grid's upper bounds serve the inner balls: up to the largest one's radius plus room
+  // for a small scene padding (a larger one only proves fewer collisions this way).
+  auto cap = [&] {
+    double inner = 0.0;
+    for (const ChainPoint& p : chain_) inner = std::max(inner, p.inner);
+    return inner > 0.0 ? inner + 0.05 : 0.0;
+  };
   // On random states of the group (a fixed seed, the held joints at their values), a slot's
   // chain runs where the grid does not clear its sphere; it is kept where it settles the slot
   // often enough (CollisionModelOptions::chain_min_settled) for its lookups to cost less than
   // the stages it saves. Measured: the free flyer's beam and our mobile base's mast and arm
   // settle half or more and keep theirs; the Panda's links, whose stages are few and cheap,
-  // settle 10-30 % and would only be slowed down.
-  if (chain_.empty() || !(min_settled > 0.0)) return;
-  const RobotModel& m = *robot_;
-  constexpr int kSamples = 256;
-  std::mt19937_64 rng(1);
-  std::vector<double> q = held_;
-  std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
-  std::vector<int> reached(slots_.size(), 0), settled(slots_.size(), 0);
-  for (int k = 0; k < kSamples; ++k) {
-    for (int a : group_active_) {
-      const RobotJoint& jt = m.joints[m.active_joints[a]];
-      const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
-      const double lo = bounded ? jt.limits.lower : -3.141592653589793;
-      const double hi = bounded ? jt.limits.upper : 3.141592653589793;
-      q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
-    kin_.computeLinkPoses(q.data(), X.data());
-    for (std::size_t i = 0; i < slots_.size(); ++i) {
-      const Slot& s = slots_[i];
-      if (s.num_chain == 0 || s.obstacles.empty()) continue;
-      const Eigen::Isometry3d& XL = X[s.link];
-      if (grid_.clear(XL * s.center_L, s.radius)) continue;
-      ++reached[i];
-      std::uint64_t open = 0;
-      bool deep = false;
-      for (int c = s.first_chain; c < s.first_chain + s.num_chain; ++c) {
-        const ChainPoint& p = chain_[std::size_t(c)];
-        const std::uint16_t v = grid_.cell(XL * p.c_L);
-        deep = deep || ((v >> 8) != ClearanceGrid::kUnknown &&
-                        (v >> 8) * ClearanceGrid::kQuantum <= p.inner);
-        if (!((v & 0xff) * ClearanceGrid::kQuantum > p.outer))
-          open |= std::uint64_t(1) << p.element;
+  // settle 10-30 % and would only be slowed down. The upper bounds are computed for the points
+  // alone: a scene where no chain pays builds none.
+  if (min_settled > 0.0) {
+    const RobotModel& m = *robot_;
+    constexpr int kSamples = 256;
+    const double upper_cap = cap();
+    std::mt19937_64 rng(1);
+    std::vector<double> q = held_;
+    std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
+    std::vector<int> reached(slots_.size(), 0), settled(slots_.size(), 0);
+    for (int k = 0; k < kSamples; ++k) {
+      for (int a : group_active_) {
+        const RobotJoint& jt = m.joints[m.active_joints[a]];
+        const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
+        const double lo = bounded ? jt.limits.lower : -3.141592653589793;
+        const double hi = bounded ? jt.limits.upper : 3.141592653589793;
+        q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
       }
-      settled[i] += deep || !open;
+      kin_.computeLinkPoses(q.data(), X.data());
+      for (std::size_t i = 0; i < slots_.size(); ++i) {
+        const Slot& s = slots_[i];
+        if (s.num_chain == 0 || s.obstacles.empty()) continue;
+        const Eigen::Isometry3d& XL = X[s.link];
+        if (grid_.clear(XL * s.center_L, s.radius)) continue;
+        ++reached[i];
+        bool clear = true, deep = false;
+        for (int c = s.first_chain; c < s.first_chain + s.num_chain && !deep; ++c) {
+          const ChainPoint& p = chain_[std::size_t(c)];
+          const Eigen::Vector3d w = XL * p.c_L;
+          clear = clear && grid_.clear(w, p.outer);
+          if (p.inner > 0.0) {
+            const std::uint8_t u = grid_.upperAt(w, untouchable, upper_cap);
+            deep = u != ClearanceGrid::kUnknown && u * ClearanceGrid::kQuantum <= p.inner;
+          }
+        }
+        settled[i] += deep || clear;
+      }
     }
-  }
-  std::vector<ChainPoint> kept;
-  for (std::size_t i = 0; i < slots_.size(); ++i) {
-    Slot& s = slots_[i];
-    const bool pays =
-        reached[i] > 0 && settled[i] >= min_settled * (1.0 + s.num_chain / 8.0) * reached[i];
-    const int first = s.first_chain;
-    s.first_chain = int(kept.size());
-    if (!pays) {
-      s.num_chain = 0;
-      continue;
+    std::vector<ChainPoint> kept;
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+      Slot& s = slots_[i];
+      const bool pays =
+          reached[i] > 0 && settled[i] >= min_settled * (1.0 + s.num_chain / 8.0) * reached[i];
+      const int first = s.first_chain;
+      s.first_chain = int(kept.size());
+      if (!pays) {
+        s.num_chain = 0;
+        continue;
+      }
+      kept.insert(kept.end(), chain_.begin() + first, chain_.begin() + first + s.num_chain);
     }
-    kept.insert(kept.end(), chain_.begin() + first, chain_.begin() + first + s.num_chain);
+    chain_ = std::move(kept);
   }
-  chain_ = std::move(kept);
+  if (!chain_.empty()) grid_.buildUpper(untouchable, cap());
 }
 
 void CollisionModel::placeOnPoseLinks() {
@@ -378,7 +390,7 @@ void CollisionModel::buildSelfPairs(const Srdf* srdf, const CollisionModelOption
   }
 }
 
-void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
+std::vector<Obb> CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
   const RobotModel& m = *robot_;
   obstacles_before_ = scene_.obstacles.size();
   std::vector<Aabb> boxes;
@@ -423,7 +435,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
   }
   std::vector<int> new_index(scene_.obstacles.size(), -1);
   std::vector<Obstacle> kept;
-  std::vector<Obb> exact_boxes;  // box obstacles no moving link may touch: the grid's upper bounds
+  std::vector<Obb> untouchable;  // box obstacles no moving link may touch
   for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) {
     if (!keep[o]) continue;
     new_index[o] = int(kept.size());
@@ -443,7 +455,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       Obb exact = b;
       exact.c = ob.X_WO.translation();
       exact.h = box->half;
-      exact_boxes.push_back(exact);
+      untouchable.push_back(exact);
     }
   }
   scene_.obstacles = std::move(kept);
@@ -469,11 +481,6 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       region.upper = region.upper.cwiseMax(slot.reach_center_W + r);
     }
   grid_ = ClearanceGrid(region, boxes_, obbs_);
-  // Upper bounds where a chain's inner ball can use them: up to its largest radius plus room
-  // for a scene padding.
-  double inner = 0.0;
-  for (const ChainPoint& p : chain_) inner = std::max(inner, p.inner);
-  if (!chain_.empty()) grid_.buildUpper(exact_boxes, inner > 0.0 ? inner + 0.25 : 0.0);
   // Candidate lists pay where many obstacles are kept (a mobile base among shelves): a link
   // sphere the grid cannot clear is then tested against the few obstacles near it only.
   constexpr std::size_t kMinCandidateObstacles = 16;
@@ -491,6 +498,7 @@ void CollisionModel::pruneObstacles(const CollisionModelOptions& options) {
       slot.obstacle_bits.assign(words, 0);
       for (int o : slot.obstacles) slot.obstacle_bits[o / 64] |= std::uint64_t(1) << (o % 64);
     }
+  return untouchable;
 }
 
 void CollisionModel::buildSelfTables(const CollisionModelOptions& options) {

@@ -10,8 +10,8 @@
 
 namespace dss {
 
-ElementShapes computeElementShapes(const CollisionElement& ce) {
-  ElementShapes e;
+CachedElementShapes computeElementShapes(const CollisionElement& ce) {
+  CachedElementShapes e;
   elementSphere(ce.shape, ce.X_LS, &e.center_L, &e.radius);
   localBox(ce.shape, &e.box_center_S, &e.box_half);
   e.num_inner = innerBalls(ce.shape, e.box_center_S, e.box_half, e.inner_S, e.kMaxInner);
@@ -34,7 +34,7 @@ constexpr std::size_t kMaxRobots = 16;
 struct Entry {
   std::weak_ptr<const RobotModel> robot;
   const RobotModel* robot_ptr = nullptr;
-  std::shared_ptr<const std::vector<ElementShapes>> shapes;
+  std::shared_ptr<const std::vector<CachedElementShapes>> shapes;
 };
 
 struct Cache {
@@ -49,7 +49,7 @@ Cache& cache() {
 
 }  // namespace
 
-std::shared_ptr<const std::vector<ElementShapes>> cachedElementShapes(
+std::shared_ptr<const std::vector<CachedElementShapes>> cachedElementShapes(
     const std::shared_ptr<const RobotModel>& robot) {
   Cache& c = cache();
   {
@@ -62,7 +62,7 @@ std::shared_ptr<const std::vector<ElementShapes>> cachedElementShapes(
       if (alive && alive.get() == robot.get()) return e.shapes;
     }
   }
-  auto shapes = std::make_shared<std::vector<ElementShapes>>();
+  auto shapes = std::make_shared<std::vector<CachedElementShapes>>();
   for (const RobotLink& link : robot->links)
     for (const CollisionElement& ce : link.collisions) shapes->push_back(computeElementShapes(ce));
   std::lock_guard<std::mutex> lock(c.mutex);

@@ -13,9 +13,10 @@ namespace {
 
 // A hull's facet planes (n, d with n.x <= d inside, n unit); false for a flat or degenerate
 // hull (no interior).
-bool facetPlanes(const AnyShape& shape, std::vector<Eigen::Vector4d>* planes) {
+bool facetPlanes(const AnyShape& shape, std::vector<Eigen::Vector4d>* planes,
+                 const mesh::TriangleMesh* tessellated = nullptr) {
   const auto& hull = std::get<ConvexHull>(shape);
-  const mesh::TriangleMesh m = mesh::tessellate(shape);
+  const mesh::TriangleMesh m = tessellated ? *tessellated : mesh::tessellate(shape);
   if (m.triangles.empty()) return false;
   const Eigen::Vector3d centroid = hull.center();
   for (const auto& t : m.triangles) {
@@ -77,10 +78,11 @@ bool ballInside(const AnyShape& shape, const std::vector<Eigen::Vector3d>& dirs,
 
 }  // namespace
 
-void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r) {
+void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r,
+                const mesh::TriangleMesh* tessellated) {
   std::vector<Eigen::Vector4d> planes;
   const bool hull = std::holds_alternative<ConvexHull>(shape);
-  const bool solid = !hull || facetPlanes(shape, &planes);
+  const bool solid = !hull || facetPlanes(shape, &planes, tessellated);
   const std::vector<Eigen::Vector3d> dirs = checkDirections(planes);
   for (int k = 0; k < n; ++k) {
     const double shrink = 1e-7 * (shapeMagnitude(shape) + c[k].norm()) + 1e-12;

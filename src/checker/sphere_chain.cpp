@@ -29,13 +29,14 @@ SphereChain sphereChain(const AnyShape& shape, const Eigen::Vector3d& box_c,
     chain.center_S[k] = box_c;
     chain.center_S[k][axis] += slab * (2 * k + 1) - box_h[axis];
   }
+  mesh::TriangleMesh m;  // a hull's, for its slabs and its facets
   if (std::holds_alternative<ConvexHull>(shape)) {
     // The hull cut by a slab is a polytope whose vertices are the hull's vertices within the
     // slab and the points where the hull's edges cross the slab's planes: the farthest of them
     // from the point bounds the cut part. The edges are the tessellation's; a flat hull has
     // none, and takes every segment between two of its points instead (their crossings are
     // points of the hull, its edges' among them).
-    const mesh::TriangleMesh m = mesh::tessellate(shape);
+    m = mesh::tessellate(shape);
     const std::vector<Eigen::Vector3d>& points =
         m.triangles.empty() ? std::get<ConvexHull>(shape).points() : m.vertices;
     std::vector<std::pair<int, int>> edges;
@@ -73,7 +74,8 @@ SphereChain sphereChain(const AnyShape& shape, const Eigen::Vector3d& box_c,
   double radius;
   elementSphere(shape, Eigen::Isometry3d::Identity(), &center, &radius);
   if (n == 1 && center == chain.center_S[0]) chain.outer[0] = std::min(chain.outer[0], radius);
-  innerRadii(shape, chain.center_S, n, chain.inner);
+  innerRadii(shape, chain.center_S, n, chain.inner,
+             std::holds_alternative<ConvexHull>(shape) ? &m : nullptr);
   return chain;
 }
 

@@ -61,6 +61,9 @@ class ClearanceGrid {
   /// Stored with the lower bounds, two bytes per voxel (cell()).
   void buildUpper(const std::vector<Obb>& boxes, double cap);
   bool hasCells() const { return !cells_.empty(); }
+  /// The upper bound buildUpper(boxes, cap) stores for the voxel of c, in quanta (kUnknown
+  /// where it keeps none, outside the grid and for NaN), computed without storing it.
+  std::uint8_t upperAt(const Eigen::Vector3d& c, const std::vector<Obb>& boxes, double cap) const;
   /// The bounds of c's voxel in quanta: the lower one in the low byte, the upper one in the
   /// high byte (kUnknown where unknown); kOutside (0 and kUnknown) when c is outside the grid
   /// or NaN. Needs hasCells().

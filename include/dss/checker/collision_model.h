@@ -202,14 +202,17 @@ class CollisionModel {
   RobotModel foldedRobot() const;
   void buildBounds();
   void buildSlots();
-  /// The slot's chain points (sphere_chain.h), when they add to its sphere.
-  void addChain(Slot& s);
-  /// Drops the chains that do not pay on random states of the group (after the grid).
-  void keepPayingChains(double min_settled);
+  /// The slot's chain points (sphere_chain.h), when they add to its sphere; `cached`: its
+  /// elements' entries in the element cache.
+  void addChain(Slot& s, const CachedElementShapes* cached);
+  /// Drops the chains that do not pay on random states of the group (after the grid), then
+  /// gives the grid its upper bounds from `untouchable` where chains remain.
+  void keepPayingChains(double min_settled, const std::vector<Obb>& untouchable);
   void placeOnPoseLinks();
   void computeReach(const std::vector<Eigen::Isometry3d>& X_WL);
   void buildSelfPairs(const Srdf* srdf, const CollisionModelOptions& options);
-  void pruneObstacles(const CollisionModelOptions& options);
+  /// Returns the kept box obstacles that no moving link may touch (the grid's upper bounds).
+  std::vector<Obb> pruneObstacles(const CollisionModelOptions& options);
   void buildSelfTables(const CollisionModelOptions& options);
 
   std::shared_ptr<const RobotModel> robot_;

@@ -34,16 +34,21 @@ struct ElementShapes {
   bool has_inner_box = false;
   Eigen::Vector3d inner_box_c = Eigen::Vector3d::Zero();
   Eigen::Vector3d inner_box_h = Eigen::Vector3d::Zero();
-  /// Balls along the element, for the clearance grid (sphere_chain.h), in the shape frame.
+};
+
+/// What the cache keeps of an element: the bounds the sweep reads (each model's elements carry
+/// them) and the balls along it (sphere_chain.h, in the shape frame), which a model copies into
+/// its chain points where they pay.
+struct CachedElementShapes : ElementShapes {
   SphereChain chain;
 };
 
 /// The bounds of one element (not cached).
-ElementShapes computeElementShapes(const CollisionElement& element);
+CachedElementShapes computeElementShapes(const CollisionElement& element);
 
 /// One entry per collision element of the robot: links in model order, each link's elements
 /// in order.
-std::shared_ptr<const std::vector<ElementShapes>> cachedElementShapes(
+std::shared_ptr<const std::vector<CachedElementShapes>> cachedElementShapes(
     const std::shared_ptr<const RobotModel>& robot);
 
 }  // namespace dss

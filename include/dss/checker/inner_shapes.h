@@ -12,6 +12,10 @@
 
 namespace dss {
 
+namespace mesh {
+struct TriangleMesh;
+}
+
 /// Up to `max_out` balls inside `shape` (centre in the shape frame, radius), along the longest
 /// axis of its local box (box_c, box_h; element_bounds.h). The radius of a ball at c is the
 /// distance from c to the shape's boundary (for a hull: to its facet planes), reduced by a
@@ -24,8 +28,10 @@ int innerBalls(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen:
 /// For each of the n points c[k] (shape frame), the radius of a ball about it inside `shape`:
 /// the distance to the boundary (for a hull: to its facet planes) reduced by a relative 1e-7 of
 /// the shape's size, each ball checked as innerBalls checks its own; 0 for a point outside or
-/// on the boundary, and for cones and flat hulls.
-void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r);
+/// on the boundary, and for cones and flat hulls. `tessellated`: a hull's tessellation
+/// (mesh::tessellate) when the caller has it.
+void innerRadii(const AnyShape& shape, const Eigen::Vector3d* c, int n, double* r,
+                const mesh::TriangleMesh* tessellated = nullptr);
 
 /// True when the ball (c, r) comes within `pad` of the box (rotation, centre, half extents),
 /// with a relative margin against rounding: a safe "colliding". NaN anywhere gives false.
