@@ -465,20 +465,19 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
       case Motion::kBall: {
         // A quaternion of (nearly) zero or non-finite norm has no rotation: the pose becomes
         // NaN, which every checker answers as invalid input. Otherwise the rotation of the
-        // quaternion scaled to unit norm, from its squared norm n2 (one division, no square
-        // root).
+        // quaternion scaled to unit norm, from its squared norm (one division, no square
+        // root). The products come first and the scale last, so that the division runs beside
+        // them rather than before them.
         const double x = q[s.q_index], y = q[s.q_index + 1], z = q[s.q_index + 2],
                      w = q[s.q_index + 3];
-        const double n2 = x * x + y * y + z * z + w * w;
         Eigen::Matrix3d M;
         if (quaternionNormValid(x, y, z, w)) {
-          const double f = 2.0 / n2;
-          const double fx = f * x, fy = f * y, fz = f * z;
-          const double xx = fx * x, yy = fy * y, zz = fz * z, xy = fx * y, xz = fx * z, yz = fy * z,
-                       wx = fx * w, wy = fy * w, wz = fz * w;
-          M << 1.0 - (yy + zz), xy - wz, xz + wy,  //
-              xy + wz, 1.0 - (xx + zz), yz - wx,   //
-              xz - wy, yz + wx, 1.0 - (xx + yy);
+          const double xx = x * x, yy = y * y, zz = z * z, ww = w * w;
+          const double xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
+          const double f = 2.0 / ((xx + yy) + (zz + ww));
+          M << 1.0 - f * (yy + zz), f * (xy - wz), f * (xz + wy),  //
+              f * (xy + wz), 1.0 - f * (xx + zz), f * (yz - wx),   //
+              f * (xz - wy), f * (yz + wx), 1.0 - f * (xx + yy);
         } else {
           M.setConstant(std::numeric_limits<double>::quiet_NaN());
         }
