@@ -9,6 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "dss/checker/element_bounds.h"
 #include "dss/checker/element_shapes_cache.h"
 #include "dss/checker/inner_shapes.h"
@@ -107,9 +111,20 @@ bool CollisionModel::withinBounds(const double* q) const {
   const double* const hi = range_upper_.data();
   const double* const held = range_held_.data();
   const std::size_t n = range_lower_.size();
+  std::size_t a = 0;
   bool in_range = true;
-  for (std::size_t a = 0; a < n; ++a)
-    in_range &= ((q[a] >= lo[a]) & (q[a] <= hi[a])) | (q[a] == held[a]);
+#if defined(__SSE2__)
+  // Two values at a time (the comparisons are false for NaN, as the scalar ones).
+  __m128d ok = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  for (; a + 2 <= n; a += 2) {
+    const __m128d v = _mm_loadu_pd(q + a);
+    const __m128d range =
+        _mm_and_pd(_mm_cmpge_pd(v, _mm_loadu_pd(lo + a)), _mm_cmple_pd(v, _mm_loadu_pd(hi + a)));
+    ok = _mm_and_pd(ok, _mm_or_pd(range, _mm_cmpeq_pd(v, _mm_loadu_pd(held + a))));
+  }
+  in_range = _mm_movemask_pd(ok) == 3;
+#endif
+  for (; a < n; ++a) in_range &= ((q[a] >= lo[a]) & (q[a] <= hi[a])) | (q[a] == held[a]);
   if (!in_range) return false;
   for (const int a : quaternions_)
     if (!quaternionNormValid(q[a], q[a + 1], q[a + 2], q[a + 3])) return false;
