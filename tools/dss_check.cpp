@@ -140,6 +140,19 @@ nlohmann::json describe(const dss::Problem& p) {
   j["clearance_grid"] = {{"voxels", grid.voxels()},
                          {"voxel_size", grid.voxelSize()},
                          {"origin", {grid.origin().x(), grid.origin().y(), grid.origin().z()}}};
+  // The links that keep a sphere chain (sphere_chain.h) and its points: outer and inner radii.
+  json chains = json::array();
+  for (const auto& slot : m.slots()) {
+    if (slot.num_chain == 0) continue;
+    json points = json::array();
+    for (int k = slot.first_chain; k < slot.first_chain + slot.num_chain; ++k) {
+      const auto& cp = m.chainPoints()[std::size_t(k)];
+      points.push_back({{"outer", cp.outer}, {"inner", cp.inner > 0.0 ? cp.inner : 0.0}});
+    }
+    chains.push_back({{"link", r.links[slot.link].name}, {"points", points}});
+  }
+  j["sphere_chains"] = chains;
+  j["clearance_grid"]["upper_bounds"] = grid.hasCells();
   j["robot_scene_pairs"] = m.scenePairs();
   j["robot_scene_pairs_total"] = m.scenePairsBefore();
   j["summary"] = m.summary();

@@ -561,6 +561,11 @@ std::string CollisionModel::summary() const {
   for (const auto& e : elements_)
     if (e.source->piece >= 0) ++pieces, meshes += e.source->piece == 0;
   if (pieces > 0) os << ", " << meshes << " meshes as " << pieces << " convex pieces";
+  std::size_t chained = 0;
+  for (const auto& s : slots_) chained += s.num_chain > 0;
+  if (chained > 0)
+    os << ", sphere chains on " << chained << (chained == 1 ? " link (" : " links (")
+       << chain_.size() << " points)";
   if (self_tables_.size() > 0) {
     std::size_t cells = 0, free = 0, colliding = 0;
     for (const auto& t : self_tables_.tables())

@@ -122,6 +122,28 @@ BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path
   BOOST_TEST(c.out.find('1') != std::string::npos, c.out);
 }
 
+// dss_check --describe names the links that keep a sphere chain: the flyer's body, with a point
+// per slab of its beam and one for its fin, each inner ball inside its outer one.
+BOOST_AUTO_TEST_CASE(describe_lists_the_sphere_chains) {
+  const std::string d = kRobots + "/dss_free_flyer";
+  const dss_test::ToolRun r = dss_test::runTool(
+      "dss_check",
+      {"--robot", d + "/dss_free_flyer.urdf", "--srdf", d + "/dss_free_flyer.srdf", "--scene",
+       d + "/scenes/window.yaml", "--workspace", "-3,-2,0,3,2,3", "--describe"});
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  BOOST_REQUIRE(j["sphere_chains"].size() == 1u);
+  BOOST_TEST(j["sphere_chains"][0]["link"] == "body");
+  BOOST_TEST(j["sphere_chains"][0]["points"].size() == 8u);
+  for (const auto& p : j["sphere_chains"][0]["points"]) {
+    BOOST_TEST(p["inner"].get<double>() > 0.0);
+    BOOST_TEST(p["inner"].get<double>() < p["outer"].get<double>());
+  }
+  BOOST_TEST(j["clearance_grid"]["upper_bounds"] == true);
+  BOOST_TEST(j["summary"].get<std::string>().find("sphere chains on 1 link (8 points)") !=
+             std::string::npos);
+}
+
 // A goal that names only some of the group's values (here the arm's, not the base's) keeps
 // the others at their start values, and dss_plan says so; a goal naming them all gets no note.
 BOOST_AUTO_TEST_CASE(goal_values_not_named_keep_their_start_values_with_a_note) {
