@@ -20,6 +20,7 @@
 #include "dss/checker/pose_links.h"
 #include "dss/checker/self_pair_table_cache.h"
 #include "dss/robot/multi_dof.h"
+#include "group_sample.h"
 
 namespace dss {
 
@@ -258,13 +259,7 @@ void CollisionModel::keepPayingChains(double min_settled, const std::vector<Obb>
     std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
     std::vector<int> reached(slots_.size(), 0), settled(slots_.size(), 0);
     for (int k = 0; k < kSamples; ++k) {
-      for (int a : group_active_) {
-        const RobotJoint& jt = m.joints[m.active_joints[a]];
-        const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
-        const double lo = bounded ? jt.limits.lower : -3.141592653589793;
-        const double hi = bounded ? jt.limits.upper : 3.141592653589793;
-        q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
-      }
+      detail::drawGroupState(*this, rng, q);
       kin_.computeLinkPoses(q.data(), X.data());
       for (std::size_t i = 0; i < slots_.size(); ++i) {
         const Slot& s = slots_[i];

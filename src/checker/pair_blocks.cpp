@@ -6,6 +6,7 @@
 
 #include "dss/checker/collision_model.h"
 #include "dss/checker/motion_bounds.h"
+#include "group_sample.h"
 
 namespace dss {
 
@@ -68,13 +69,7 @@ std::vector<PairBlock> buildPairBlocks(const CollisionModel& model, double min_s
   std::vector<Eigen::Isometry3d> X(m.links.size(), Eigen::Isometry3d::Identity());
   std::vector<int> ruled_out(blocks.size(), 0);
   for (int k = 0; k < kSamples; ++k) {
-    for (int a : model.groupActive()) {
-      const RobotJoint& jt = m.joints[m.active_joints[a]];
-      const bool bounded = jt.type != JointType::kContinuous && jt.limits.has_position_limits;
-      const double lo = bounded ? jt.limits.lower : -3.141592653589793;
-      const double hi = bounded ? jt.limits.upper : 3.141592653589793;
-      q[a] = std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
+    detail::drawGroupState(model, rng, q);
     model.sweepKinematics().computeLinkPoses(q.data(), X.data());
     for (std::size_t b = 0; b < blocks.size(); ++b) {
       const PairBlock& blk = blocks[b];
