@@ -32,6 +32,8 @@ const char* kUsage =
     "           joints' translation; default: the request's workspace_parameters)\n"
     "           --base-table-cells N (a planar base's table against the scene: at most about\n"
     "           N cells, 0 for none; default 65536)\n"
+    "           --scene-mesh-parts N (a scene mesh: the hulls of its connected parts, at\n"
+    "           most N, in [1, 4096]; default 16; 1: one hull per mesh)\n"
     "           --shard K/N (with --problems: every N-th problem in name order, from the K-th)\n"
     "           --path FILE (CSV of the solution: every joint; several problems:\n"
     "           FILE.<problem>.csv)\n"
@@ -114,6 +116,8 @@ Args parseArgs(int argc, char** argv) {
       a.workspace = cli.numbers(6);
     else if (cli.option("--base-table-cells"))
       a.base_table_cells = static_cast<long>(cli.integer(0, 1 << 24));
+    else if (cli.option("--scene-mesh-parts"))
+      a.scene_mesh_parts = static_cast<std::size_t>(cli.integer(1, 4096));
     else if (cli.option("--resolution"))
       a.resolution = cli.number(0.0, 1.0);
     else if (cli.option("--path"))

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "dss/checker/checker_setup.h"
+#include "dss/scene/scene_load_options.h"
 
 namespace dss_plan {
 
@@ -25,7 +26,8 @@ struct Args {
   unsigned runs = 10;
   std::string log = "dss_plan_benchmark.log";
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
-  long base_table_cells = -1;          // --base-table-cells (-1: the model's default)
+  long base_table_cells = -1;  // --base-table-cells (-1: the model's default)
+  std::size_t scene_mesh_parts = dss::SceneLoadOptions{}.max_mesh_parts;  // --scene-mesh-parts
   long shard_k = 0, shard_n = 0;       // --shard K/N (0: every problem)
   std::vector<std::string> summarize;  // --summarize FILE...
   std::vector<double> workspace;  // --workspace: min x, y, z, max x, y, z (empty: the request's)

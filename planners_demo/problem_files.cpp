@@ -76,7 +76,10 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& loaded_robot,
   // problem's below, the robot's and the SRDF's once in run().
   for (const auto& w : req.warnings)
     std::cerr << "dss_plan: " << files.name << ": warning: " << w << "\n";
-  dss::Scene scene = files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene);
+  dss::SceneLoadOptions scene_options;
+  scene_options.max_mesh_parts = a.scene_mesh_parts;
+  dss::Scene scene =
+      files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene, scene_options);
   dss::Scene loaded = a.render.empty() ? dss::Scene{} : scene;
   std::map<std::string, double> start = req.startState();
   {

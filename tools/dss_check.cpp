@@ -45,6 +45,8 @@ const char* kUsage =
     "                 floating joints' translation; needed when the group moves one)\n"
     "                 [--base-table-cells N]  (a planar base's table against the scene: at\n"
     "                 most about N cells, 0 for none; default 65536)\n"
+    "                 [--scene-mesh-parts N]  (a scene mesh: the hulls of its connected\n"
+    "                 parts, at most N, in [1, 4096]; default 16; 1: one hull per mesh)\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "  --contacts: each line of a state the first checker calls colliding also names the\n"
@@ -164,6 +166,7 @@ int run(int argc, char** argv) {
   std::string robot, srdf, scene_path, group, states, checkers = "dss";
   double padding = 0.0, self_padding = 0.0;
   long base_table_cells = -1;  // -1: the model's default
+  dss::SceneLoadOptions scene_options;
   long random_n = 0;
   unsigned long seed = 1;
   int repeat = 0;
@@ -196,6 +199,8 @@ int run(int argc, char** argv) {
       self_padding = cli.number(0, kMaxPadding);
     else if (cli.option("--base-table-cells"))
       base_table_cells = static_cast<long>(cli.integer(0, 1 << 24));
+    else if (cli.option("--scene-mesh-parts"))
+      scene_options.max_mesh_parts = static_cast<std::size_t>(cli.integer(1, 4096));
     else if (cli.option("--random"))
       random_n = cli.integer(1, kMaxCount);
     else if (cli.option("--seed"))
@@ -258,7 +263,7 @@ int run(int argc, char** argv) {
     r.model = widened;
   }
   dss::Scene scene;
-  if (!scene_path.empty()) scene = dss::loadScene(scene_path);
+  if (!scene_path.empty()) scene = dss::loadScene(scene_path, scene_options);
   dss::CollisionModelOptions options;
   options.prune_margin = padding;
   if (base_table_cells >= 0) options.base_table_cells = std::size_t(base_table_cells);

@@ -2,6 +2,7 @@
 #include "dss/scene/planning_scene_yaml.h"
 
 #include <algorithm>
+#include <array>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -332,8 +333,13 @@ class SceneYamlReader {
       }
       for (std::size_t k = 0; k < meshes.size(); ++k) {
         const std::string me = elem + " mesh " + std::to_string(k);
-        AnyShape s = meshShape(meshes[k], me);
-        parts.push_back({std::move(s), y_.pose(poses[k], me + " pose"), me});
+        std::vector<ConvexHull> hulls = meshHulls(meshes[k], me);
+        const Eigen::Isometry3d X_ObjS = y_.pose(poses[k], me + " pose");
+        for (std::size_t h = 0; h < hulls.size(); ++h)
+          parts.push_back({AnyShape(std::move(hulls[h])), X_ObjS,
+                           hulls.size() == 1 ? me
+                                             : me + " part " + std::to_string(h) + " of " +
+                                                   std::to_string(hulls.size())});
       }
     }
     if (YamlReader::has(obj, "planes")) {
@@ -343,6 +349,12 @@ class SceneYamlReader {
     }
     if (parts.empty())
       y_.fail(obj, elem + ": no primitives or meshes (an empty object cannot be checked)");
+    if (parts.size() > limits_.max_obstacles - scene.obstacles.size())
+      y_.fail(obj,
+              scene_detail::overLimit(elem + ": " + std::to_string(parts.size()) +
+                                          " shapes and mesh parts after " +
+                                          std::to_string(scene.obstacles.size()) + " obstacles",
+                                      limits_.max_obstacles, "max_obstacles"));
 
     for (std::size_t k = 0; k < parts.size(); ++k) {
       Obstacle o;
@@ -397,7 +409,8 @@ class SceneYamlReader {
     }
   }
 
-  AnyShape meshShape(const YAML::Node& m, const std::string& me) {
+  // The hulls of a mesh's connected parts (one hull for vertices without triangles).
+  std::vector<ConvexHull> meshHulls(const YAML::Node& m, const std::string& me) {
     if (!m.IsMap()) y_.fail(m, me + ": expected a mapping");
     y_.checkKeys(m, me, "shape_msgs/Mesh (with our resource, dimensions and scale)",
                  {"vertices", "triangles", "resource", "dimensions", "scale"});
@@ -414,11 +427,12 @@ class SceneYamlReader {
       }
       const std::string where = y_.at(m) + ": " + me;
       const std::string file = scene_detail::resolveMeshUri(uri, base_dir_, options_, where);
-      return scene_detail::meshFileHull(file, scale, where, mesh_budget_);
+      return scene_detail::meshFileHulls(file, scale, where, mesh_budget_, options_.max_mesh_parts);
     }
     const YAML::Node verts = y_.sequence(y_.require(m, "vertices", me), me + " vertices");
     mesh_budget_.take(verts.size(), y_.at(verts) + ": " + me);
-    std::vector<Eigen::Vector3d> pts;
+    mesh::TriangleMesh mesh;
+    std::vector<Eigen::Vector3d>& pts = mesh.vertices;
     pts.reserve(verts.size());
     for (const auto& v : verts) pts.push_back(y_.vector3(v, me + " vertex"));
     if (pts.empty()) y_.fail(verts, me + ": mesh has no vertices");
@@ -434,15 +448,19 @@ class SceneYamlReader {
             t.IsMap() ? y_.require(t, "vertex_indices", me + " triangle") : YAML::Node(t);
         y_.sequence(idx, me + " triangle");
         if (idx.size() != 3) y_.fail(idx, me + ": a triangle needs 3 vertex indices");
-        for (const auto& i : idx) {
+        std::array<int, 3> tri{};
+        for (std::size_t c = 0; c < 3; ++c) {
+          const YAML::Node i = idx[c];
           const int k = y_.integer(i, me + " triangle index");
           if (k < 0 || static_cast<std::size_t>(k) >= pts.size())
             y_.fail(i, me + ": triangle index " + std::to_string(k) + " out of range (" +
                            std::to_string(pts.size()) + " vertices)");
+          tri[c] = k;
         }
+        mesh.triangles.push_back(tri);
       }
     }
-    return scene_detail::pointsHull(pts, y_.at(m) + ": " + me);
+    return scene_detail::meshHulls(mesh, options_.max_mesh_parts, y_.at(m) + ": " + me);
   }
 
   YamlReader y_;

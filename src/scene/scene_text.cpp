@@ -33,8 +33,12 @@ std::vector<std::string> tokens(const std::string& s) {
 
 class SceneTextReader {
  public:
-  SceneTextReader(const std::string& text, std::string source, const SceneInputLimits& limits)
-      : source_(std::move(source)), limits_(limits), mesh_budget_(limits) {
+  SceneTextReader(const std::string& text, std::string source, const SceneInputLimits& limits,
+                  std::size_t max_mesh_parts)
+      : source_(std::move(source)),
+        limits_(limits),
+        max_mesh_parts_(max_mesh_parts),
+        mesh_budget_(limits) {
     std::istringstream in(text);
     std::string line;
     int number = 0;
@@ -191,6 +195,7 @@ class SceneTextReader {
       const Line& tl = nextLine(se + " type");
       const std::string type = tl.text;
       AnyShape shape;
+      std::vector<ConvexHull> mesh_hulls;  // a mesh: the hulls of its parts
       const Line* dl = nullptr;
       if (type == "box") {
         const auto d = numbers(3, se + " box size", &dl);
@@ -209,7 +214,7 @@ class SceneTextReader {
         else
           shape = Cone::fromLength(d[0], d[1]);
       } else if (type == "mesh") {
-        shape = readMesh(se, tl);
+        mesh_hulls = readMesh(se, tl);
       } else if (type == "plane") {
         fail(tl, se + ": planes are unbounded and not supported as obstacles");
       } else {
@@ -217,14 +222,31 @@ class SceneTextReader {
       }
       const Eigen::Isometry3d X_ObjS = pose(se);
       numbers(4, se + " colour (r g b a)");
-      Obstacle o;
-      o.object_id = id;
-      o.X_FO = X_WObj * X_ObjS;
-      o.X_WO = o.X_FO;
-      o.description = describeShape(shape) + " (" + at(tl) + ", " + se + ")";
-      o.shape = std::move(shape);
-      parts.push_back(std::move(o));
+      auto add = [&](AnyShape part, const std::string& what) {
+        Obstacle o;
+        o.object_id = id;
+        o.X_FO = X_WObj * X_ObjS;
+        o.X_WO = o.X_FO;
+        o.description = describeShape(part) + " (" + at(tl) + ", " + what + ")";
+        o.shape = std::move(part);
+        parts.push_back(std::move(o));
+      };
+      if (mesh_hulls.empty()) {
+        add(std::move(shape), se);
+      } else {
+        for (std::size_t h = 0; h < mesh_hulls.size(); ++h)
+          add(AnyShape(std::move(mesh_hulls[h])),
+              mesh_hulls.size() == 1
+                  ? se
+                  : se + " part " + std::to_string(h) + " of " + std::to_string(mesh_hulls.size()));
+      }
     }
+    if (parts.size() > limits_.max_obstacles - scene.obstacles.size())
+      fail(header,
+           scene_detail::overLimit(elem + ": " + std::to_string(parts.size()) +
+                                       " shapes and mesh parts after " +
+                                       std::to_string(scene.obstacles.size()) + " obstacles",
+                                   limits_.max_obstacles, "max_obstacles"));
     if (new_format) {
       // Each subframe is read line by line, so the file's length bounds the work.
       const std::size_t n_sub = count(nextLine(elem + " subframe count"), elem + " subframe count",
@@ -243,7 +265,7 @@ class SceneTextReader {
   // "v t" then v vertices and t triangles; MoveIt reads them as a token stream, so line
   // breaks inside the block are free. Triangles are checked but only the vertices matter.
   // Both counts are bounded before any arithmetic on them (3 v + 3 t cannot wrap around).
-  AnyShape readMesh(const std::string& se, const Line& tl) {
+  std::vector<ConvexHull> readMesh(const std::string& se, const Line& tl) {
     const Line& cl = nextLine(se + " mesh counts");
     const auto c = tokens(cl.text);
     if (c.size() != 2) fail(cl, se + ": expected 'vertex_count triangle_count'");
@@ -262,7 +284,9 @@ class SceneTextReader {
       for (const auto& t : tokens(l.text)) vals.push_back(parseNumber(t, l, se + " mesh data"));
       if (vals.size() > want) fail(l, se + ": more mesh numbers than the counts announce");
     }
-    std::vector<Eigen::Vector3d> pts(nv);
+    mesh::TriangleMesh mesh;
+    std::vector<Eigen::Vector3d>& pts = mesh.vertices;
+    pts.resize(nv);
     for (std::size_t i = 0; i < nv; ++i) {
       pts[i] = Eigen::Vector3d(vals[3 * i], vals[3 * i + 1], vals[3 * i + 2]);
       if (!pts[i].allFinite()) fail(*last, se + ": non-finite mesh vertex " + std::to_string(i));
@@ -270,11 +294,16 @@ class SceneTextReader {
     for (std::size_t i = 3 * nv; i < want; ++i)
       if (vals[i] < 0 || vals[i] >= double(nv) || vals[i] != std::floor(vals[i]))
         fail(*last, se + ": bad triangle index " + std::to_string(vals[i]));
-    return scene_detail::pointsHull(pts, at(tl) + ": " + se);
+    mesh.triangles.resize(nt);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (std::size_t c = 0; c < 3; ++c)
+        mesh.triangles[t][c] = static_cast<int>(vals[3 * nv + 3 * t + c]);
+    return scene_detail::meshHulls(mesh, max_mesh_parts_, at(tl) + ": " + se);
   }
 
   std::string source_;
   const SceneInputLimits& limits_;
+  std::size_t max_mesh_parts_;
   scene_detail::MeshBudget mesh_budget_;
   std::vector<Line> lines_;
   std::size_t next_ = 0;
@@ -285,7 +314,7 @@ class SceneTextReader {
 
 Scene parseSceneText(const std::string& text, const std::string& source,
                      const SceneLoadOptions& options) {
-  return SceneTextReader(text, source, options.limits).read();
+  return SceneTextReader(text, source, options.limits, options.max_mesh_parts).read();
 }
 
 Scene loadSceneText(const std::string& path, const SceneLoadOptions& options) {

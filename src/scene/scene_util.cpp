@@ -11,6 +11,7 @@
 
 #include "../common/nesting_scan.h"
 #include "dss/mesh/mesh.h"
+#include "dss/mesh/mesh_parts.h"
 #include "dss/mesh/mesh_paths.h"
 #include "dss/scene/scene_error.h"
 
@@ -129,8 +130,27 @@ std::size_t MeshBudget::remaining() const {
   return std::min(limits_.max_mesh_vertices, scene_left);
 }
 
-ConvexHull meshFileHull(const std::string& file, const Eigen::Vector3d& scale,
-                        const std::string& where, MeshBudget& budget) {
+std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
+                                  const std::string& where) {
+  std::vector<std::vector<Eigen::Vector3d>> parts;
+  try {
+    parts = mesh::meshParts(m, max_parts, where);
+  } catch (const std::exception& e) {
+    throw SceneError(e.what());
+  }
+  std::vector<ConvexHull> hulls;
+  hulls.reserve(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    hulls.push_back(pointsHull(parts[k], parts.size() == 1
+                                             ? where
+                                             : where + " part " + std::to_string(k) + " of " +
+                                                   std::to_string(parts.size())));
+  return hulls;
+}
+
+std::vector<ConvexHull> meshFileHulls(const std::string& file, const Eigen::Vector3d& scale,
+                                      const std::string& where, MeshBudget& budget,
+                                      std::size_t max_parts) {
   const std::string what = where + " (mesh " + file + ")";
   mesh::TriangleMesh m;
   const std::size_t cap = budget.remaining();
@@ -143,7 +163,7 @@ ConvexHull meshFileHull(const std::string& file, const Eigen::Vector3d& scale,
   }
   if (m.vertices.empty()) throw SceneError(where + ": mesh '" + file + "' has no vertices");
   budget.take(m.vertices.size(), what);
-  return pointsHull(m.vertices, what);
+  return meshHulls(m, max_parts, what);
 }
 
 void checkXmlDepth(const std::string& text, const std::string& file,

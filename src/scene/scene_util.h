@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dss/core/convex_hull.h"
+#include "dss/mesh/mesh.h"
 #include "dss/scene/scene.h"
 #include "dss/scene/scene_load_options.h"
 
@@ -54,9 +55,15 @@ class MeshBudget {
   std::size_t used_ = 0;
 };
 
-/// The convex hull of a mesh file, scaled; its vertices are taken from `budget`.
-ConvexHull meshFileHull(const std::string& file, const Eigen::Vector3d& scale,
-                        const std::string& where, MeshBudget& budget);
+/// The convex hulls of a mesh's connected parts (mesh/mesh_parts.h), at most `max_parts`
+/// (SceneLoadOptions::max_mesh_parts); SceneError prefixed by `where` for a bad mesh.
+std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
+                                  const std::string& where);
+
+/// The hulls of a mesh file's parts, scaled; its vertices are taken from `budget`.
+std::vector<ConvexHull> meshFileHulls(const std::string& file, const Eigen::Vector3d& scale,
+                                      const std::string& where, MeshBudget& budget,
+                                      std::size_t max_parts);
 
 /// The convex hull of inline vertices.
 ConvexHull pointsHull(const std::vector<Eigen::Vector3d>& points, const std::string& where);

@@ -244,18 +244,38 @@ class UrdfWorldReader {
                          std::to_string(link->collision_array.size()) +
                          " (an unsupported geometry tag?)");
       const auto& cols = link->collision_array;
+      std::vector<Obstacle> link_obstacles;
       for (std::size_t k = 0; k < cols.size(); ++k) {
         const std::string where = path_ + ": link '" + name + "' collision " + std::to_string(k);
         const auto& c = cols[k];
         if (!c->geometry) throw SceneError(where + ": no geometry");
-        Obstacle o;
-        o.object_id = name;
-        o.name = cols.size() == 1 ? name : name + "/" + std::to_string(k);
-        o.shape = shape(*c->geometry, where);
-        o.X_FO = X_WL.at(name) * toIsometry(c->origin, where + " origin");
-        o.X_WO = o.X_FO;
-        o.description = describeShape(o.shape) + " (" + where + ")";
-        scene.obstacles.push_back(std::move(o));
+        std::vector<AnyShape> shapes = this->shapes(*c->geometry, where);
+        const Eigen::Isometry3d X_WS = X_WL.at(name) * toIsometry(c->origin, where + " origin");
+        for (std::size_t h = 0; h < shapes.size(); ++h) {
+          Obstacle o;
+          o.object_id = name;
+          o.name = name;  // numbered below when the link has several
+          o.shape = std::move(shapes[h]);
+          o.X_FO = X_WS;
+          o.X_WO = o.X_FO;
+          o.description = describeShape(o.shape) + " (" + where +
+                          (shapes.size() == 1 ? std::string()
+                                              : " part " + std::to_string(h) + " of " +
+                                                    std::to_string(shapes.size())) +
+                          ")";
+          link_obstacles.push_back(std::move(o));
+        }
+      }
+      if (link_obstacles.size() > options_.limits.max_obstacles - scene.obstacles.size())
+        throw SceneError(path_ + ": link '" + name + "': " +
+                         scene_detail::overLimit(std::to_string(link_obstacles.size()) +
+                                                     " shapes and mesh parts after " +
+                                                     std::to_string(scene.obstacles.size()) +
+                                                     " obstacles",
+                                                 options_.limits.max_obstacles, "max_obstacles"));
+      for (std::size_t k = 0; k < link_obstacles.size(); ++k) {
+        if (link_obstacles.size() > 1) link_obstacles[k].name += "/" + std::to_string(k);
+        scene.obstacles.push_back(std::move(link_obstacles[k]));
       }
     }
     scene_detail::makeObstacleNamesUnique(scene);
@@ -263,24 +283,25 @@ class UrdfWorldReader {
   }
 
  private:
-  AnyShape shape(const urdf::Geometry& g, const std::string& where) {
+  // One shape, or the hulls of a mesh's parts.
+  std::vector<AnyShape> shapes(const urdf::Geometry& g, const std::string& where) {
     switch (g.type) {
       case urdf::Geometry::SPHERE: {
         const auto& s = static_cast<const urdf::Sphere&>(g);
         scene_detail::checkSize(s.radius, "radius", where);
-        return Sphere{s.radius};
+        return {AnyShape(Sphere{s.radius})};
       }
       case urdf::Geometry::BOX: {
         const auto& b = static_cast<const urdf::Box&>(g);
         const Eigen::Vector3d size(b.dim.x, b.dim.y, b.dim.z);
         for (int i = 0; i < 3; ++i) scene_detail::checkSize(size[i], "box size", where);
-        return Box::fromSize(size);
+        return {AnyShape(Box::fromSize(size))};
       }
       case urdf::Geometry::CYLINDER: {
         const auto& c = static_cast<const urdf::Cylinder&>(g);
         scene_detail::checkSize(c.radius, "radius", where);
         scene_detail::checkSize(c.length, "length", where);
-        return Cylinder::fromLength(c.radius, c.length);
+        return {AnyShape(Cylinder::fromLength(c.radius, c.length))};
       }
       case urdf::Geometry::MESH: {
         const auto& m = static_cast<const urdf::Mesh&>(g);
@@ -288,7 +309,11 @@ class UrdfWorldReader {
         scene_detail::checkMeshScale(scale, where);
         const std::string file =
             scene_detail::resolveMeshUri(m.filename, base_dir_, options_, where);
-        return scene_detail::meshFileHull(file, scale, where, mesh_budget_);
+        std::vector<AnyShape> out;
+        for (auto& h :
+             scene_detail::meshFileHulls(file, scale, where, mesh_budget_, options_.max_mesh_parts))
+          out.emplace_back(std::move(h));
+        return out;
       }
     }
     throw SceneError(where + ": unsupported geometry");

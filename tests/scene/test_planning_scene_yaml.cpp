@@ -188,9 +188,11 @@ BOOST_AUTO_TEST_CASE(inline_mesh_map_forms_and_all_primitives) {
         - {position: [0, 2, 0], orientation: [0, 0, 0, 1]}
 )";
   const dss::Scene s = dss::parsePlanningSceneYaml(text, "inline.yaml");
-  BOOST_REQUIRE(s.obstacles.size() == 4u);
+  // The mesh: its triangles' part, then the two vertices no triangle uses.
+  BOOST_REQUIRE(s.obstacles.size() == 5u);
   BOOST_TEST(s.obstacles[0].name == "thing/0");
   BOOST_TEST(s.obstacles[3].name == "thing/3");
+  BOOST_TEST(s.obstacles[4].name == "thing/4");
   BOOST_TEST(std::get<dss::Sphere>(s.obstacles[0].shape).radius == 0.5);
   BOOST_TEST((s.obstacles[0].X_WO.translation() - Eigen::Vector3d(1, 0, 1)).norm() < 1e-15);
   const auto& cone = std::get<dss::Cone>(s.obstacles[1].shape);
@@ -199,12 +201,16 @@ BOOST_AUTO_TEST_CASE(inline_mesh_map_forms_and_all_primitives) {
   const auto& cyl = std::get<dss::Cylinder>(s.obstacles[2].shape);
   BOOST_TEST(cyl.radius == 0.25);  // [height, radius]
   BOOST_TEST(cyl.half_length == 1.0);
-  // The interior point (0.2, 0.2, 0.2) is not a hull vertex.
-  BOOST_TEST(std::get<dss::ConvexHull>(s.obstacles[3].shape).size() == 5u);
+  BOOST_TEST(std::get<dss::ConvexHull>(s.obstacles[3].shape).size() == 4u);
   BOOST_TEST((s.obstacles[3].X_WO.translation() - Eigen::Vector3d(1, 2, 0)).norm() < 1e-15);
   const dss::Aabb box = dss::worldAabb(s.obstacles[3]);
   BOOST_TEST((box.lower - Eigen::Vector3d(1, 2, 0)).norm() < 1e-15);
   BOOST_TEST((box.upper - Eigen::Vector3d(2, 3, 1)).norm() < 1e-15);
+  BOOST_TEST(std::get<dss::ConvexHull>(s.obstacles[4].shape).size() == 2u);
+  const dss::Aabb unused = dss::worldAabb(s.obstacles[4]);
+  BOOST_TEST((unused.lower - Eigen::Vector3d(1.2, 2.2, 0.2)).norm() < 1e-15);
+  BOOST_TEST((unused.upper - Eigen::Vector3d(2, 3, 1)).norm() < 1e-15);
+  BOOST_TEST(s.obstacles[4].description.find("mesh 0 part 1 of 2") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(mesh_by_resource, DSS_NEEDS_SHARED) {
@@ -220,9 +226,14 @@ BOOST_AUTO_TEST_CASE(mesh_by_resource, DSS_NEEDS_SHARED) {
       "      mesh_poses:\n        - position: [0, 0, 0]\n"
       "          orientation: [0, 0, 0, 1]\n";
   const dss::Scene s = dss::parsePlanningSceneYaml(text, "/tmp/inline.yaml");
-  BOOST_REQUIRE(s.obstacles.size() == 1u);
-  const auto& hull = std::get<dss::ConvexHull>(s.obstacles[0].shape);
-  BOOST_TEST(hull.size() >= 4u);
+  // The door's panel and its handle, apart: one hull each.
+  BOOST_REQUIRE(s.obstacles.size() == 2u);
+  BOOST_TEST(s.obstacles[0].name == "door/0");
+  BOOST_TEST(s.obstacles[1].name == "door/1");
+  for (const auto& o : s.obstacles) {
+    BOOST_TEST(o.object_id == "door");
+    BOOST_TEST(std::get<dss::ConvexHull>(o.shape).size() >= 4u);
+  }
   // Missing resource: the error names the URI and the object.
   const std::string bad =
       "world:\n  collision_objects:\n    - id: ghost\n      meshes:\n"

@@ -92,9 +92,13 @@ BOOST_AUTO_TEST_CASE(mesh_shape) {
       "m\n* tet\n1\nmesh\n5 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.1 0.1 0.1\n"
       "0 1 2\n0 1 3\n0 2 3\n1 2 3\n2 0 0\n0 0 0 1\n0 0 0 0\n.\n";
   const dss::Scene s = dss::parseSceneText(text, "mesh.scene");
-  BOOST_REQUIRE(s.obstacles.size() == 1u);
+  // The tetrahedron, then the vertex no triangle uses.
+  BOOST_REQUIRE(s.obstacles.size() == 2u);
+  BOOST_TEST(s.obstacles[0].name == "tet/0");
   BOOST_TEST(std::get<dss::ConvexHull>(s.obstacles[0].shape).size() == 4u);
   BOOST_TEST(s.obstacles[0].X_WO.translation().x() == 2.0);
+  BOOST_TEST(std::get<dss::ConvexHull>(s.obstacles[1].shape).size() == 1u);
+  BOOST_TEST(s.obstacles[1].X_WO.translation().x() == 2.0);
 }
 
 BOOST_AUTO_TEST_CASE(errors_name_file_and_line) {

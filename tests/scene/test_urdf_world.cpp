@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "dss/scene/scene_error.h"
 #include "dss/scene/scene_loader.h"
@@ -29,22 +30,40 @@ BOOST_AUTO_TEST_CASE(kitchen_loads, DSS_NEEDS_SHARED) {
   requireShared();
   const dss::Scene s = dss::loadScene(kitchenDir() + "/kitchen.urdf");
   BOOST_TEST(s.name == "kitchen");
-  BOOST_TEST(s.obstacles.size() == 5u);
+  // The meshes' separate parts: the cupboard's body and shelf, each door's panel and handle,
+  // the dishwasher door, the counter's three blocks.
+  BOOST_TEST(s.obstacles.size() == 10u);
+  std::map<std::string, int> per_link;
   for (const auto& o : s.obstacles) {
     BOOST_TEST(std::holds_alternative<dss::ConvexHull>(o.shape));
     BOOST_TEST(std::get<dss::ConvexHull>(o.shape).size() >= 4u);
+    ++per_link[o.object_id];
   }
+  BOOST_TEST(per_link["cupboard"] == 2);
+  BOOST_TEST(per_link["cupboard_door_l"] == 2);
+  BOOST_TEST(per_link["cupboard_door_r"] == 2);
+  BOOST_TEST(per_link["dishwasher_door"] == 1);
+  BOOST_TEST(per_link["kitchen_counter"] == 3);
   BOOST_TEST(s.warnings.size() == 3u);  // three revolute doors held at 0
   // cupboard_door_l sits at its joint origin (door joint at 0).
+  int doors = 0;
   for (const auto& o : s.obstacles)
-    if (o.name == "cupboard_door_l")
+    if (o.object_id == "cupboard_door_l") {
+      BOOST_TEST((o.name == "cupboard_door_l/0" || o.name == "cupboard_door_l/1"));
       BOOST_TEST((o.X_WO.translation() - Eigen::Vector3d(0.44637, 0.54793, 1.6839)).norm() < 1e-12);
+      ++doors;
+    }
+  BOOST_TEST(doors == 2);
+  // One hull per mesh on request.
+  dss::SceneLoadOptions whole;
+  whole.max_mesh_parts = 1;
+  BOOST_TEST(dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", whole).obstacles.size() == 5u);
 
   // The original, with package:// URIs, through a package directory.
   dss::SceneLoadOptions opt;
   opt.package_dirs["motion_bench_maker"] = scenesDir() + "/mbm_templates";
   const dss::Scene orig = dss::loadUrdfWorld(kitchenDir() + "/kitchen.orig.urdf", opt);
-  BOOST_TEST(orig.obstacles.size() == 5u);
+  BOOST_TEST(orig.obstacles.size() == 10u);
 }
 
 BOOST_AUTO_TEST_CASE(kitchen_joint_policy, DSS_NEEDS_SHARED) {
@@ -60,11 +79,15 @@ BOOST_AUTO_TEST_CASE(kitchen_joint_policy, DSS_NEEDS_SHARED) {
   dss::SceneLoadOptions open;
   open.joint_values["cupboard_door_l_joint"] = -1.0;
   const dss::Scene s = dss::loadUrdfWorld(kitchenDir() + "/kitchen.urdf", open);
+  int turned = 0;
   for (const auto& o : s.obstacles)
-    if (o.name == "cupboard_door_l")
+    if (o.object_id == "cupboard_door_l") {
       BOOST_TEST(
           (o.X_WO.linear() - Eigen::AngleAxisd(-1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix())
               .norm() < 1e-12);
+      ++turned;
+    }
+  BOOST_TEST(turned == 2);
   dss::SceneLoadOptions typo;
   typo.joint_values["no_such_joint"] = 0.0;
   m = thrownMessage<dss::SceneError>(

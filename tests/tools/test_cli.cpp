@@ -381,6 +381,8 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--mode", "quad"}, "--mode");
   checkToolUsageError("dss_check", {"--robot", kArm, "--describe=yes"},
                       "--describe takes no value");
+  checkToolUsageError("dss_check", {"--robot", kArm, "--random", "10", "--scene-mesh-parts", "0"},
+                      "--scene-mesh-parts");
   checkToolUsageError("dss_check", {"--robot", kArm, "--bogus"}, "unknown option --bogus");
   checkToolUsageError("dss_check", {"--random", "10"}, "--robot is required");
   checkToolUsageError("dss_check", {"--robot", kArm}, "--states or --random is required");
@@ -390,6 +392,7 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_plan", {"--seed", "-1"},
                       "--seed: expected an integer in [0, 4294967295], got '-1'");
   checkToolUsageError("dss_plan", {"--time", "inf"}, "--time");
+  checkToolUsageError("dss_plan", {"--scene-mesh-parts", "4097"}, "--scene-mesh-parts");
   checkToolUsageError("dss_plan", {"--runs", "2x", "--benchmark"}, "--runs");
   checkToolUsageError("dss_plan", {"--planner", "RRTX"}, "unknown planner 'RRTX'");
   checkToolUsageError("dss_plan", {"--simplify=1"}, "--simplify takes no value");
@@ -431,6 +434,36 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
   checkToolUsageError("dss_pairs", {"--repeat", "0x", "-"}, "--repeat: expected an integer");
   checkToolUsageError("dss_pairs", {"--padding", "1e", "-"},
                       "--padding: expected a finite number >= 0, got '1e'");
+}
+
+// dss_check reads a scene mesh as one hull per connected part (two boards a metre apart: two
+// obstacles), or as one hull with --scene-mesh-parts 1.
+BOOST_AUTO_TEST_CASE(dss_check_scene_mesh_parts) {
+  const fs::path scene =
+      fs::temp_directory_path() / ("dss_test_mesh_parts_" + std::to_string(::getpid()) + ".yaml");
+  {
+    std::ofstream out(scene);
+    out << "world:\n  collision_objects:\n    - id: boards\n      meshes:\n        - vertices: [";
+    for (double x0 : {1.0, 2.0})
+      for (int i = 0; i < 4; ++i)
+        out << (x0 == 1.0 && i == 0 ? "" : ", ") << "[" << x0 + (i & 1 ? 0.02 : 0.0) << ", "
+            << (i & 2 ? 0.5 : -0.5) << ", 0]";
+    out << "]\n          triangles: [[0, 1, 2], [1, 3, 2], [4, 5, 6], [5, 7, 6]]\n"
+           "      mesh_poses:\n        - {position: [0, 0, 0.5], orientation: [0, 0, 0, 1]}\n";
+  }
+  auto total = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"--robot", kArm, "--scene", scene.string(), "--describe"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome o = runTool("dss_check", args);
+    BOOST_TEST_REQUIRE(o.exit_code == 0, o.err);
+    const std::string key = "\"obstacles_total\": ";
+    const std::size_t at = o.out.find(key);
+    BOOST_TEST_REQUIRE(at != std::string::npos, o.out);
+    return std::stoi(o.out.substr(at + key.size()));
+  };
+  BOOST_TEST(total({}) == 2);
+  BOOST_TEST(total({"--scene-mesh-parts", "1"}) == 1);
+  fs::remove(scene);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -9,7 +9,8 @@
 // SolidPrimitive number), and `meshes[]` with `mesh_poses[]`, each mesh given inline
 // (`vertices` as [x, y, z] or {x, y, z}, `triangles` as [a, b, c] or {vertex_indices})
 // or by `resource` (a path or package:// URI, optional `dimensions`/`scale` [sx, sy, sz]);
-// a mesh becomes the convex hull of its vertices. Positions are [x, y, z] or {x, y, z};
+// a mesh becomes the convex hulls of its connected parts (mesh/mesh_parts.h; the hull of
+// its vertices when it has no triangles), one obstacle each. Positions are [x, y, z] or {x, y, z};
 // orientations [x, y, z, w] or {x, y, z, w}, normalised; NaN or zero quaternions refused.
 // `planes` (unbounded) and operations other than ADD are refused; attached objects and
 // octomaps are listed in Scene::warnings. A top-level document that is itself a `world`

@@ -2,6 +2,7 @@
 // movable joints of a URDF world take, the input budgets and how strictly YAML keys are read.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -17,6 +18,10 @@ struct SceneLoadOptions {
   std::map<std::string, double> joint_values;
   /// URDF world: refuse a URDF with non-fixed joints instead of posing them.
   bool urdf_require_fixed_joints = false;
+  /// A mesh obstacle becomes the convex hulls of its connected parts (mesh/mesh_parts.h), each
+  /// an obstacle of its object, at most this many per mesh (neighbouring parts are joined
+  /// beyond it); 1 takes every mesh as one hull.
+  std::size_t max_mesh_parts = 16;
   /// Counts and depths beyond which a file is refused (see input_limits.h).
   SceneInputLimits limits;
   /// PlanningScene YAML: a key that the message at that place does not have (e.g. `Pose` or

@@ -13,7 +13,8 @@
 //
 // As MoveIt does, the line after `* id` decides the version: with spaces it is the object
 // position (new format), without it is the shape count (old format). Shape poses are
-// relative to the object pose. Poses are in the world frame. Errors name the file and line.
+// relative to the object pose. Poses are in the world frame. A mesh becomes the convex hulls
+// of its connected parts (mesh/mesh_parts.h), one obstacle each. Errors name the file and line.
 // An object id given twice is an error naming both lines (MoveIt would add the second
 // object's shapes to the first and move them all to the second pose).
 // Counts are digits only and bounded before use by SceneLoadOptions::limits (shapes per

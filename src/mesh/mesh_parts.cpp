@@ -1,0 +1,107 @@
+// Connected parts of a triangle mesh (see mesh_parts.h).
+#include "dss/mesh/mesh_parts.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace dss::mesh {
+
+namespace {
+
+int findRoot(std::vector<int>& parent, int a) {
+  while (parent[a] != a) {
+    parent[a] = parent[parent[a]];
+    a = parent[a];
+  }
+  return a;
+}
+
+}  // namespace
+
+std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, std::size_t max_parts,
+                                                    const std::string& what) {
+  const std::vector<Eigen::Vector3d>& v = mesh.vertices;
+  if (v.empty()) throw std::runtime_error(what + ": mesh has no vertices");
+  if (max_parts == 0) throw std::runtime_error(what + ": at most 0 mesh parts asked for");
+  for (const auto& p : v)
+    if (!p.allFinite()) throw std::runtime_error(what + ": non-finite mesh vertex");
+  const int n = static_cast<int>(v.size());
+  for (const auto& t : mesh.triangles)
+    for (int i : t)
+      if (i < 0 || i >= n)
+        throw std::runtime_error(what + ": triangle index " + std::to_string(i) +
+                                 " out of range (" + std::to_string(n) + " vertices)");
+
+  // Vertices with equal coordinates become one point: `point[i]` for vertex i.
+  std::vector<int> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    return std::lexicographical_compare(v[a].data(), v[a].data() + 3, v[b].data(), v[b].data() + 3);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return less(a, b) || (!less(b, a) && a < b); });
+  std::vector<int> point(v.size());
+  std::vector<int> first_vertex;  // point -> a vertex holding it
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k == 0 || less(order[k - 1], order[k])) first_vertex.push_back(order[k]);
+    point[order[k]] = static_cast<int>(first_vertex.size()) - 1;
+  }
+  const int points = static_cast<int>(first_vertex.size());
+
+  std::vector<int> parent(points);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<char> used(points, 0);
+  for (const auto& t : mesh.triangles) {
+    const int a = findRoot(parent, point[t[0]]);
+    used[point[t[0]]] = used[point[t[1]]] = used[point[t[2]]] = 1;
+    for (int k = 1; k < 3; ++k) {
+      const int b = findRoot(parent, point[t[k]]);
+      if (a != b) parent[b] = a;
+    }
+  }
+  // Parts numbered in the order of their first triangle; unused points last.
+  std::vector<int> part_of_root(points, -1);
+  int parts = 0;
+  for (const auto& t : mesh.triangles) {
+    int& id = part_of_root[findRoot(parent, point[t[0]])];
+    if (id < 0) id = parts++;
+  }
+  std::vector<std::vector<Eigen::Vector3d>> sets(parts);
+  std::vector<Eigen::Vector3d> unused;
+  for (int p = 0; p < points; ++p) {
+    const Eigen::Vector3d& x = v[first_vertex[p]];
+    if (used[p])
+      sets[part_of_root[findRoot(parent, p)]].push_back(x);
+    else
+      unused.push_back(x);
+  }
+  if (!unused.empty()) sets.push_back(std::move(unused));
+  if (sets.size() <= max_parts) return sets;
+
+  // Too many: join neighbours along the longest side of the bounding box.
+  Eigen::Vector3d lo = v[0], hi = v[0];
+  for (const auto& p : v) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  std::vector<double> key(sets.size());
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    double sum = 0.0;
+    for (const auto& p : sets[s]) sum += p[axis];
+    key[s] = sum / double(sets[s].size());
+  }
+  std::vector<std::size_t> by_key(sets.size());
+  std::iota(by_key.begin(), by_key.end(), std::size_t(0));
+  std::stable_sort(by_key.begin(), by_key.end(),
+                   [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  std::vector<std::vector<Eigen::Vector3d>> groups(max_parts);
+  for (std::size_t k = 0; k < by_key.size(); ++k) {
+    auto& g = groups[k * max_parts / by_key.size()];
+    const auto& s = sets[by_key[k]];
+    g.insert(g.end(), s.begin(), s.end());
+  }
+  return groups;
+}
+
+}  // namespace dss::mesh
