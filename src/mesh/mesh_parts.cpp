@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dss/mesh/convex_decomposition.h"
+
 namespace dss::mesh {
 
 namespace {
@@ -102,6 +104,31 @@ std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, st
     g.insert(g.end(), s.begin(), s.end());
   }
   return groups;
+}
+
+double hullExcess(const TriangleMesh& mesh, const dss::ConvexHull& hull, std::size_t max_work) {
+  const std::size_t per_sample = mesh.triangles.size() + mesh.vertices.size();
+  if (mesh.triangles.empty() || per_sample > max_work) return 0.0;
+  // Samples on the hull's surface: each facet triangle's centroid and edge midpoints.
+  const TriangleMesh surface = tessellate(dss::AnyShape(hull));
+  std::vector<Eigen::Vector3d> samples;
+  samples.reserve(4 * surface.triangles.size());
+  for (const auto& t : surface.triangles) {
+    const Eigen::Vector3d& a = surface.vertices[t[0]];
+    const Eigen::Vector3d& b = surface.vertices[t[1]];
+    const Eigen::Vector3d& c = surface.vertices[t[2]];
+    samples.push_back((a + b + c) / 3.0);
+    samples.push_back(0.5 * (a + b));
+    samples.push_back(0.5 * (b + c));
+    samples.push_back(0.5 * (c + a));
+  }
+  const std::size_t budget = std::max<std::size_t>(1, max_work / per_sample);
+  const std::size_t n = samples.size();
+  const std::size_t stride = n > budget ? (n + budget - 1) / budget : 1;
+  double excess = 0.0;
+  for (std::size_t i = 0; i < n; i += stride)
+    excess = std::max(excess, distanceToMesh(mesh, samples[i]));
+  return excess;
 }
 
 }  // namespace dss::mesh

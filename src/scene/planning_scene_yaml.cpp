@@ -333,7 +333,7 @@ class SceneYamlReader {
       }
       for (std::size_t k = 0; k < meshes.size(); ++k) {
         const std::string me = elem + " mesh " + std::to_string(k);
-        std::vector<ConvexHull> hulls = meshHulls(meshes[k], me);
+        std::vector<ConvexHull> hulls = meshHulls(meshes[k], me, scene.warnings);
         const Eigen::Isometry3d X_ObjS = y_.pose(poses[k], me + " pose");
         for (std::size_t h = 0; h < hulls.size(); ++h)
           parts.push_back({AnyShape(std::move(hulls[h])), X_ObjS,
@@ -410,7 +410,8 @@ class SceneYamlReader {
   }
 
   // The hulls of a mesh's connected parts (one hull for vertices without triangles).
-  std::vector<ConvexHull> meshHulls(const YAML::Node& m, const std::string& me) {
+  std::vector<ConvexHull> meshHulls(const YAML::Node& m, const std::string& me,
+                                    std::vector<std::string>& warnings) {
     if (!m.IsMap()) y_.fail(m, me + ": expected a mapping");
     y_.checkKeys(m, me, "shape_msgs/Mesh (with our resource, dimensions and scale)",
                  {"vertices", "triangles", "resource", "dimensions", "scale"});
@@ -427,7 +428,8 @@ class SceneYamlReader {
       }
       const std::string where = y_.at(m) + ": " + me;
       const std::string file = scene_detail::resolveMeshUri(uri, base_dir_, options_, where);
-      return scene_detail::meshFileHulls(file, scale, where, mesh_budget_, options_.max_mesh_parts);
+      return scene_detail::meshFileHulls(file, scale, where, mesh_budget_, options_.max_mesh_parts,
+                                         warnings);
     }
     const YAML::Node verts = y_.sequence(y_.require(m, "vertices", me), me + " vertices");
     mesh_budget_.take(verts.size(), y_.at(verts) + ": " + me);
@@ -460,7 +462,7 @@ class SceneYamlReader {
         mesh.triangles.push_back(tri);
       }
     }
-    return scene_detail::meshHulls(mesh, options_.max_mesh_parts, y_.at(m) + ": " + me);
+    return scene_detail::meshHulls(mesh, options_.max_mesh_parts, y_.at(m) + ": " + me, warnings);
   }
 
   YamlReader y_;

@@ -214,7 +214,7 @@ class SceneTextReader {
         else
           shape = Cone::fromLength(d[0], d[1]);
       } else if (type == "mesh") {
-        mesh_hulls = readMesh(se, tl);
+        mesh_hulls = readMesh(se, tl, scene.warnings);
       } else if (type == "plane") {
         fail(tl, se + ": planes are unbounded and not supported as obstacles");
       } else {
@@ -265,7 +265,8 @@ class SceneTextReader {
   // "v t" then v vertices and t triangles; MoveIt reads them as a token stream, so line
   // breaks inside the block are free. Triangles are checked but only the vertices matter.
   // Both counts are bounded before any arithmetic on them (3 v + 3 t cannot wrap around).
-  std::vector<ConvexHull> readMesh(const std::string& se, const Line& tl) {
+  std::vector<ConvexHull> readMesh(const std::string& se, const Line& tl,
+                                   std::vector<std::string>& warnings) {
     const Line& cl = nextLine(se + " mesh counts");
     const auto c = tokens(cl.text);
     if (c.size() != 2) fail(cl, se + ": expected 'vertex_count triangle_count'");
@@ -298,7 +299,7 @@ class SceneTextReader {
     for (std::size_t t = 0; t < nt; ++t)
       for (std::size_t c = 0; c < 3; ++c)
         mesh.triangles[t][c] = static_cast<int>(vals[3 * nv + 3 * t + c]);
-    return scene_detail::meshHulls(mesh, max_mesh_parts_, at(tl) + ": " + se);
+    return scene_detail::meshHulls(mesh, max_mesh_parts_, at(tl) + ": " + se, warnings);
   }
 
   std::string source_;

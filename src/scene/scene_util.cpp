@@ -131,7 +131,7 @@ std::size_t MeshBudget::remaining() const {
 }
 
 std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
-                                  const std::string& where) {
+                                  const std::string& where, std::vector<std::string>& warnings) {
   std::vector<std::vector<Eigen::Vector3d>> parts;
   try {
     parts = mesh::meshParts(m, max_parts, where);
@@ -140,17 +140,28 @@ std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_p
   }
   std::vector<ConvexHull> hulls;
   hulls.reserve(parts.size());
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    hulls.push_back(pointsHull(parts[k], parts.size() == 1
-                                             ? where
-                                             : where + " part " + std::to_string(k) + " of " +
-                                                   std::to_string(parts.size())));
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::string part = parts.size() == 1 ? where
+                                               : where + " part " + std::to_string(k) + " of " +
+                                                     std::to_string(parts.size());
+    hulls.push_back(pointsHull(parts[k], part));
+    // The measure's budget is shared by the parts: a large mesh loads without a long wait.
+    const double excess = mesh::hullExcess(m, hulls.back(), (std::size_t(1) << 24) / parts.size());
+    if (excess > kHullExcessWarning) {
+      std::ostringstream w;
+      w.precision(3);
+      w << part << ": its convex hull reaches at least " << excess
+        << " m beyond the mesh (a concave or open part): states in that space count as "
+           "colliding";
+      warnings.push_back(w.str());
+    }
+  }
   return hulls;
 }
 
 std::vector<ConvexHull> meshFileHulls(const std::string& file, const Eigen::Vector3d& scale,
                                       const std::string& where, MeshBudget& budget,
-                                      std::size_t max_parts) {
+                                      std::size_t max_parts, std::vector<std::string>& warnings) {
   const std::string what = where + " (mesh " + file + ")";
   mesh::TriangleMesh m;
   const std::size_t cap = budget.remaining();
@@ -163,7 +174,7 @@ std::vector<ConvexHull> meshFileHulls(const std::string& file, const Eigen::Vect
   }
   if (m.vertices.empty()) throw SceneError(where + ": mesh '" + file + "' has no vertices");
   budget.take(m.vertices.size(), what);
-  return meshHulls(m, max_parts, what);
+  return meshHulls(m, max_parts, what, warnings);
 }
 
 void checkXmlDepth(const std::string& text, const std::string& file,

@@ -55,15 +55,21 @@ class MeshBudget {
   std::size_t used_ = 0;
 };
 
-/// The convex hulls of a mesh's connected parts (mesh/mesh_parts.h), at most `max_parts`
-/// (SceneLoadOptions::max_mesh_parts); SceneError prefixed by `where` for a bad mesh.
-std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
-                                  const std::string& where);
+/// A part's hull reaching farther than this beyond its mesh gets a line in Scene::warnings.
+inline constexpr double kHullExcessWarning = 0.01;
 
-/// The hulls of a mesh file's parts, scaled; its vertices are taken from `budget`.
+/// The convex hulls of a mesh's connected parts (mesh/mesh_parts.h), at most `max_parts`
+/// (SceneLoadOptions::max_mesh_parts); a line in `warnings` for each hull that reaches more
+/// than kHullExcessWarning beyond the mesh (mesh::hullExcess). SceneError prefixed by `where`
+/// for a bad mesh.
+std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
+                                  const std::string& where, std::vector<std::string>& warnings);
+
+/// The hulls of a mesh file's parts, scaled, as meshHulls; its vertices are taken from
+/// `budget`.
 std::vector<ConvexHull> meshFileHulls(const std::string& file, const Eigen::Vector3d& scale,
                                       const std::string& where, MeshBudget& budget,
-                                      std::size_t max_parts);
+                                      std::size_t max_parts, std::vector<std::string>& warnings);
 
 /// The convex hull of inline vertices.
 ConvexHull pointsHull(const std::vector<Eigen::Vector3d>& points, const std::string& where);

@@ -249,7 +249,7 @@ class UrdfWorldReader {
         const std::string where = path_ + ": link '" + name + "' collision " + std::to_string(k);
         const auto& c = cols[k];
         if (!c->geometry) throw SceneError(where + ": no geometry");
-        std::vector<AnyShape> shapes = this->shapes(*c->geometry, where);
+        std::vector<AnyShape> shapes = this->shapes(*c->geometry, where, scene.warnings);
         const Eigen::Isometry3d X_WS = X_WL.at(name) * toIsometry(c->origin, where + " origin");
         for (std::size_t h = 0; h < shapes.size(); ++h) {
           Obstacle o;
@@ -284,7 +284,8 @@ class UrdfWorldReader {
 
  private:
   // One shape, or the hulls of a mesh's parts.
-  std::vector<AnyShape> shapes(const urdf::Geometry& g, const std::string& where) {
+  std::vector<AnyShape> shapes(const urdf::Geometry& g, const std::string& where,
+                               std::vector<std::string>& warnings) {
     switch (g.type) {
       case urdf::Geometry::SPHERE: {
         const auto& s = static_cast<const urdf::Sphere&>(g);
@@ -310,8 +311,8 @@ class UrdfWorldReader {
         const std::string file =
             scene_detail::resolveMeshUri(m.filename, base_dir_, options_, where);
         std::vector<AnyShape> out;
-        for (auto& h :
-             scene_detail::meshFileHulls(file, scale, where, mesh_budget_, options_.max_mesh_parts))
+        for (auto& h : scene_detail::meshFileHulls(file, scale, where, mesh_budget_,
+                                                   options_.max_mesh_parts, warnings))
           out.emplace_back(std::move(h));
         return out;
       }

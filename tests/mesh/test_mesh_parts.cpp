@@ -178,4 +178,31 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_errors_naming_the_mesh) {
   BOOST_CHECK_THROW(meshParts(bad, 4, "B"), std::runtime_error);
 }
 
+// How far a hull reaches beyond its mesh: nowhere for a convex solid, across the opening of an
+// open box (at least the distance from the lid's facet centroids to the walls, at most the
+// distance from the lid's centre), nothing for a point cloud.
+BOOST_AUTO_TEST_CASE(hull_excess_is_a_lower_bound_of_the_reach_beyond_the_mesh) {
+  TriangleMesh box;
+  addBoxSoup(box, Vector3d(0, 0, 0), Vector3d(1, 1, 1));
+  auto hullOf = [](const TriangleMesh& m) { return dss::mesh::convexHull(m.vertices, "test"); };
+  BOOST_TEST(dss::mesh::hullExcess(box, hullOf(box)) < 1e-12);
+  // The same box without its top face (z = 1): triangles 2 and 3 of addBoxSoup.
+  TriangleMesh open = box;
+  open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);
+  const double e = dss::mesh::hullExcess(open, hullOf(open));
+  BOOST_TEST(e >= 1.0 / 3.0 - 1e-12);
+  BOOST_TEST(e <= 0.5);
+  // Any budget keeps it a lower bound.
+  BOOST_TEST(dss::mesh::hullExcess(open, hullOf(open), 1) <= 0.5);
+  // Two boxes a metre apart in one hull: the gap.
+  TriangleMesh two = box;
+  addBoxSoup(two, Vector3d(2, 0, 0), Vector3d(3, 1, 1));
+  const double g = dss::mesh::hullExcess(two, hullOf(two));
+  BOOST_TEST(g > 0.3);
+  BOOST_TEST(g <= 0.5 + 1e-12);
+  TriangleMesh cloud;
+  cloud.vertices = box.vertices;
+  BOOST_TEST(dss::mesh::hullExcess(cloud, hullOf(cloud)) == 0.0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -104,6 +104,12 @@ void checkTwoBoxes(const Load& load, const std::string& reader) {
     BOOST_REQUIRE(whole.obstacles.size() == 1u);
     BOOST_TEST(whole.obstacles[0].name == "pair");
     BOOST_TEST(touchesAny(whole, Vector3d(1.5, 0.5, 0.5), 0.1));
+    // ... and the scene says so; each box's own hull reaches nowhere beyond it.
+    BOOST_TEST(parts.warnings.empty());
+    BOOST_REQUIRE(whole.warnings.size() == 1u);
+    BOOST_TEST(contains(whole.warnings[0], "its convex hull reaches at least 0.5"),
+               whole.warnings[0]);
+    BOOST_TEST(contains(whole.warnings[0], "mesh"), whole.warnings[0]);
   }
 }
 

@@ -29,4 +29,15 @@ namespace dss::mesh {
 std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, std::size_t max_parts,
                                                     const std::string& what);
 
+/// A lower bound on how far `hull` (one part's hull, or any hull containing triangles of `mesh`)
+/// reaches beyond the mesh: the largest distance from a point of the hull's surface to the
+/// mesh's triangles, over the centroids and edge midpoints of the hull's facet triangles (every
+/// k-th of them when their count times the mesh's size exceeds `max_work`). Points on the hull's
+/// surface are never inside a closed mesh's solid, so the bound holds for open and closed meshes
+/// alike. 0 for a mesh without triangles, and without measuring when the mesh's vertices and
+/// triangles exceed `max_work`. A concave or open part (a cupboard's carcass open at the front)
+/// reaches far; a convex solid's hull reaches nowhere (rounding aside).
+double hullExcess(const TriangleMesh& mesh, const dss::ConvexHull& hull,
+                  std::size_t max_work = std::size_t(1) << 22);
+
 }  // namespace dss::mesh
