@@ -70,40 +70,43 @@ std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, st
     int& id = part_of_root[findRoot(parent, point[t[0]])];
     if (id < 0) id = parts++;
   }
-  std::vector<std::vector<Eigen::Vector3d>> sets(parts);
-  std::vector<Eigen::Vector3d> unused;
+  // Each point's set: its part, or `parts` for the unused points (one more set when any).
+  std::vector<int> set_of(points);
+  bool any_unused = false;
   for (int p = 0; p < points; ++p) {
-    const Eigen::Vector3d& x = v[first_vertex[p]];
-    if (used[p])
-      sets[part_of_root[findRoot(parent, p)]].push_back(x);
-    else
-      unused.push_back(x);
+    set_of[p] = used[p] ? part_of_root[findRoot(parent, p)] : parts;
+    any_unused |= !used[p];
   }
-  if (!unused.empty()) sets.push_back(std::move(unused));
-  if (sets.size() <= max_parts) return sets;
+  const std::size_t sets = std::size_t(parts) + (any_unused ? 1 : 0);
 
-  // Too many: join neighbours along the longest side of the bounding box.
-  Eigen::Vector3d lo = v[0], hi = v[0];
-  for (const auto& p : v) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  std::vector<double> key(sets.size());
-  for (std::size_t s = 0; s < sets.size(); ++s) {
-    double sum = 0.0;
-    for (const auto& p : sets[s]) sum += p[axis];
-    key[s] = sum / double(sets[s].size());
+  // Beyond the cap, sets are joined in runs along the longest side of the bounding box, by
+  // their centroids (per-set sums: no per-set storage for meshes of very many parts).
+  std::vector<std::size_t> group(sets);
+  std::size_t groups = sets;
+  if (sets > max_parts) {
+    Eigen::Vector3d lo = v[0], hi = v[0];
+    for (const auto& p : v) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    std::vector<double> sum(sets, 0.0);
+    std::vector<std::size_t> count(sets, 0);
+    for (int p = 0; p < points; ++p) {
+      sum[set_of[p]] += v[first_vertex[p]][axis];
+      ++count[set_of[p]];
+    }
+    std::vector<std::size_t> by_key(sets);
+    std::iota(by_key.begin(), by_key.end(), std::size_t(0));
+    std::stable_sort(by_key.begin(), by_key.end(), [&](std::size_t x, std::size_t y) {
+      return sum[x] / double(count[x]) < sum[y] / double(count[y]);
+    });
+    for (std::size_t k = 0; k < sets; ++k) group[by_key[k]] = k * max_parts / sets;
+    groups = max_parts;
+  } else {
+    std::iota(group.begin(), group.end(), std::size_t(0));
   }
-  std::vector<std::size_t> by_key(sets.size());
-  std::iota(by_key.begin(), by_key.end(), std::size_t(0));
-  std::stable_sort(by_key.begin(), by_key.end(),
-                   [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  std::vector<std::vector<Eigen::Vector3d>> groups(max_parts);
-  for (std::size_t k = 0; k < by_key.size(); ++k) {
-    auto& g = groups[k * max_parts / by_key.size()];
-    const auto& s = sets[by_key[k]];
-    g.insert(g.end(), s.begin(), s.end());
-  }
-  return groups;
+  std::vector<std::vector<Eigen::Vector3d>> out(groups);
+  for (int p = 0; p < points; ++p) out[group[set_of[p]]].push_back(v[first_vertex[p]]);
+  return out;
 }
 
 double hullExcess(const TriangleMesh& mesh, const dss::ConvexHull& hull, std::size_t max_work) {
