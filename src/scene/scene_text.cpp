@@ -263,7 +263,7 @@ class SceneTextReader {
   }
 
   // "v t" then v vertices and t triangles; MoveIt reads them as a token stream, so line
-  // breaks inside the block are free. Triangles are checked but only the vertices matter.
+  // breaks inside the block are free. Triangles are checked and link the vertices into parts.
   // Both counts are bounded before any arithmetic on them (3 v + 3 t cannot wrap around).
   std::vector<ConvexHull> readMesh(const std::string& se, const Line& tl,
                                    std::vector<std::string>& warnings) {
