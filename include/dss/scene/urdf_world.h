@@ -6,7 +6,8 @@
 // limit), and a line is added to Scene::warnings naming the joint and the value used;
 // with `urdf_require_fixed_joints` such a joint is an error instead. Floating and planar
 // joints are refused. Primitives stay exact (box, sphere, cylinder); meshes (with their
-// `scale`) become the convex hulls of their connected parts (mesh/mesh_parts.h). Mesh URIs: package:// through SceneLoadOptions::package_dirs,
+// `scale`) become the convex hulls of their connected parts (mesh/mesh_parts.h).
+// Mesh URIs: package:// through SceneLoadOptions::package_dirs,
 // then <dir>/pkg for each ROS_PACKAGE_PATH entry (or the entry itself when it is named pkg),
 // then AMENT_PREFIX_PATH/share/pkg, then the URDF's folder; file:// and relative paths.
 // The URDF's root link is the world frame. A link's shapes (a collision element, or each part
