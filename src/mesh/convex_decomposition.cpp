@@ -19,6 +19,7 @@
 
 #include "dss/core/any_shape.h"
 #include "dss/core/convex_hull.h"
+#include "welded_ids.h"
 
 namespace dss::mesh {
 namespace {
@@ -264,25 +265,10 @@ class ElementTree {
   std::vector<Node> nodes_;
 };
 
-// Welds vertices with identical coordinates: STL files repeat every vertex per triangle.
-std::vector<int> weldedIds(const std::vector<Vec3>& v) {
-  std::vector<int> order(v.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return lexLess(v[a], v[b]) || (v[a] == v[b] && a < b); });
-  std::vector<int> id(v.size());
-  int next = -1;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    if (i == 0 || v[order[i]] != v[order[i - 1]]) ++next;
-    id[order[i]] = next;
-  }
-  return id;
-}
-
 // Directed welded edges; closed and edge-manifold when each appears once and its reverse once.
 bool closedManifold(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris) {
   if (tris.empty()) return false;
-  const std::vector<int> id = weldedIds(v);
+  const std::vector<int> id = detail::weldedIds(v);
   std::vector<std::pair<int, int>> edges;
   edges.reserve(3 * tris.size());
   for (const auto& t : tris)
@@ -389,7 +375,7 @@ void setScales(MeshData& m) {
 // plane by more than a few degrees (seen from the edge): creases of tessellated round surfaces
 // are convex and stay out.
 void findReflexEdges(const std::vector<std::array<int, 3>>& tris, MeshData& m) {
-  const std::vector<int> id = weldedIds(m.v);
+  const std::vector<int> id = detail::weldedIds(m.v);
   struct Use {
     int a, b, tri, far;
   };
@@ -478,7 +464,7 @@ MeshData prepare(const TriangleMesh& mesh, const std::string& what) {
   }
   if (m.closed) {
     // Shells: triangles joined by welded edges (union-find); each must turn like the whole.
-    const std::vector<int> id = weldedIds(mesh.vertices);
+    const std::vector<int> id = detail::weldedIds(mesh.vertices);
     std::vector<int> parent(nt);
     std::iota(parent.begin(), parent.end(), 0);
     auto find = [&](int x) {

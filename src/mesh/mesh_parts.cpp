@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dss/mesh/convex_decomposition.h"
+#include "welded_ids.h"
 
 namespace dss::mesh {
 
@@ -21,6 +22,27 @@ int findRoot(std::vector<int>& parent, int a) {
 }
 
 }  // namespace
+
+namespace detail {
+
+std::vector<int> weldedIds(const std::vector<Eigen::Vector3d>& v) {
+  auto less = [&](int a, int b) {
+    return std::lexicographical_compare(v[a].data(), v[a].data() + 3, v[b].data(), v[b].data() + 3);
+  };
+  std::vector<int> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return less(a, b) || (v[a] == v[b] && a < b); });
+  std::vector<int> id(v.size());
+  int next = -1;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i == 0 || v[order[i]] != v[order[i - 1]]) ++next;
+    id[order[i]] = next;
+  }
+  return id;
+}
+
+}  // namespace detail
 
 std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, std::size_t max_parts,
                                                     const std::string& what) {
@@ -37,20 +59,10 @@ std::vector<std::vector<Eigen::Vector3d>> meshParts(const TriangleMesh& mesh, st
                                  " out of range (" + std::to_string(n) + " vertices)");
 
   // Vertices with equal coordinates become one point: `point[i]` for vertex i.
-  std::vector<int> order(v.size());
-  std::iota(order.begin(), order.end(), 0);
-  auto less = [&](int a, int b) {
-    return std::lexicographical_compare(v[a].data(), v[a].data() + 3, v[b].data(), v[b].data() + 3);
-  };
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return less(a, b) || (!less(b, a) && a < b); });
-  std::vector<int> point(v.size());
-  std::vector<int> first_vertex;  // point -> a vertex holding it
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (k == 0 || less(order[k - 1], order[k])) first_vertex.push_back(order[k]);
-    point[order[k]] = static_cast<int>(first_vertex.size()) - 1;
-  }
-  const int points = static_cast<int>(first_vertex.size());
+  const std::vector<int> point = detail::weldedIds(v);
+  const int points = *std::max_element(point.begin(), point.end()) + 1;
+  std::vector<int> first_vertex(points);  // point -> a vertex holding it
+  for (int i = n - 1; i >= 0; --i) first_vertex[point[i]] = i;
 
   std::vector<int> parent(points);
   std::iota(parent.begin(), parent.end(), 0);

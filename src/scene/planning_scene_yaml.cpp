@@ -336,10 +336,8 @@ class SceneYamlReader {
         std::vector<ConvexHull> hulls = meshHulls(meshes[k], me, scene.warnings);
         const Eigen::Isometry3d X_ObjS = y_.pose(poses[k], me + " pose");
         for (std::size_t h = 0; h < hulls.size(); ++h)
-          parts.push_back({AnyShape(std::move(hulls[h])), X_ObjS,
-                           hulls.size() == 1 ? me
-                                             : me + " part " + std::to_string(h) + " of " +
-                                                   std::to_string(hulls.size())});
+          parts.push_back(
+              {AnyShape(std::move(hulls[h])), X_ObjS, scene_detail::partName(me, h, hulls.size())});
       }
     }
     if (YamlReader::has(obj, "planes")) {
@@ -349,12 +347,9 @@ class SceneYamlReader {
     }
     if (parts.empty())
       y_.fail(obj, elem + ": no primitives or meshes (an empty object cannot be checked)");
-    if (parts.size() > limits_.max_obstacles - scene.obstacles.size())
-      y_.fail(obj,
-              scene_detail::overLimit(elem + ": " + std::to_string(parts.size()) +
-                                          " shapes and mesh parts after " +
-                                          std::to_string(scene.obstacles.size()) + " obstacles",
-                                      limits_.max_obstacles, "max_obstacles"));
+    const std::string room =
+        scene_detail::obstacleRoom(elem, parts.size(), scene.obstacles.size(), limits_);
+    if (!room.empty()) y_.fail(obj, room);
 
     for (std::size_t k = 0; k < parts.size(); ++k) {
       Obstacle o;

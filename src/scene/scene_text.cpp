@@ -235,18 +235,12 @@ class SceneTextReader {
         add(std::move(shape), se);
       } else {
         for (std::size_t h = 0; h < mesh_hulls.size(); ++h)
-          add(AnyShape(std::move(mesh_hulls[h])),
-              mesh_hulls.size() == 1
-                  ? se
-                  : se + " part " + std::to_string(h) + " of " + std::to_string(mesh_hulls.size()));
+          add(AnyShape(std::move(mesh_hulls[h])), scene_detail::partName(se, h, mesh_hulls.size()));
       }
     }
-    if (parts.size() > limits_.max_obstacles - scene.obstacles.size())
-      fail(header,
-           scene_detail::overLimit(elem + ": " + std::to_string(parts.size()) +
-                                       " shapes and mesh parts after " +
-                                       std::to_string(scene.obstacles.size()) + " obstacles",
-                                   limits_.max_obstacles, "max_obstacles"));
+    const std::string room =
+        scene_detail::obstacleRoom(elem, parts.size(), scene.obstacles.size(), limits_);
+    if (!room.empty()) fail(header, room);
     if (new_format) {
       // Each subframe is read line by line, so the file's length bounds the work.
       const std::size_t n_sub = count(nextLine(elem + " subframe count"), elem + " subframe count",

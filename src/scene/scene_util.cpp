@@ -130,6 +130,18 @@ std::size_t MeshBudget::remaining() const {
   return std::min(limits_.max_mesh_vertices, scene_left);
 }
 
+std::string partName(const std::string& what, std::size_t k, std::size_t n) {
+  return n == 1 ? what : what + " part " + std::to_string(k) + " of " + std::to_string(n);
+}
+
+std::string obstacleRoom(const std::string& what, std::size_t count, std::size_t before,
+                         const SceneInputLimits& limits) {
+  if (before <= limits.max_obstacles && count <= limits.max_obstacles - before) return {};
+  return overLimit(what + ": " + std::to_string(count) + " shapes and mesh parts after " +
+                       std::to_string(before) + " obstacles",
+                   limits.max_obstacles, "max_obstacles");
+}
+
 std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_parts,
                                   const std::string& where, std::vector<std::string>& warnings) {
   std::vector<std::vector<Eigen::Vector3d>> parts;
@@ -141,9 +153,7 @@ std::vector<ConvexHull> meshHulls(const mesh::TriangleMesh& m, std::size_t max_p
   std::vector<ConvexHull> hulls;
   hulls.reserve(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    const std::string part = parts.size() == 1 ? where
-                                               : where + " part " + std::to_string(k) + " of " +
-                                                     std::to_string(parts.size());
+    const std::string part = partName(where, k, parts.size());
     hulls.push_back(pointsHull(parts[k], part));
     // The measure's budget is shared by the parts: a large mesh loads without a long wait.
     const double excess = mesh::hullExcess(m, hulls.back(), (std::size_t(1) << 24) / parts.size());

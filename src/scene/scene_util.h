@@ -55,6 +55,14 @@ class MeshBudget {
   std::size_t used_ = 0;
 };
 
+/// `what` for the only part of a mesh, else "<what> part k of n".
+std::string partName(const std::string& what, std::size_t k, std::size_t n);
+
+/// Empty when an object's `count` shapes and mesh parts fit after the scene's `before`
+/// obstacles (limits.max_obstacles), else the message naming `what` and the limit.
+std::string obstacleRoom(const std::string& what, std::size_t count, std::size_t before,
+                         const SceneInputLimits& limits);
+
 /// A part's hull reaching farther than this beyond its mesh gets a line in Scene::warnings.
 inline constexpr double kHullExcessWarning = 0.01;
 

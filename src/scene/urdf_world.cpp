@@ -258,21 +258,15 @@ class UrdfWorldReader {
           o.shape = std::move(shapes[h]);
           o.X_FO = X_WS;
           o.X_WO = o.X_FO;
-          o.description = describeShape(o.shape) + " (" + where +
-                          (shapes.size() == 1 ? std::string()
-                                              : " part " + std::to_string(h) + " of " +
-                                                    std::to_string(shapes.size())) +
-                          ")";
+          o.description =
+              describeShape(o.shape) + " (" + scene_detail::partName(where, h, shapes.size()) + ")";
           link_obstacles.push_back(std::move(o));
         }
       }
-      if (link_obstacles.size() > options_.limits.max_obstacles - scene.obstacles.size())
-        throw SceneError(path_ + ": link '" + name + "': " +
-                         scene_detail::overLimit(std::to_string(link_obstacles.size()) +
-                                                     " shapes and mesh parts after " +
-                                                     std::to_string(scene.obstacles.size()) +
-                                                     " obstacles",
-                                                 options_.limits.max_obstacles, "max_obstacles"));
+      const std::string room =
+          scene_detail::obstacleRoom(path_ + ": link '" + name + "'", link_obstacles.size(),
+                                     scene.obstacles.size(), options_.limits);
+      if (!room.empty()) throw SceneError(room);
       for (std::size_t k = 0; k < link_obstacles.size(); ++k) {
         if (link_obstacles.size() > 1) link_obstacles[k].name += "/" + std::to_string(k);
         scene.obstacles.push_back(std::move(link_obstacles[k]));
