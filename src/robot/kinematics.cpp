@@ -127,6 +127,9 @@ void Kinematics::setConstantFrame(Step* s, const Eigen::Isometry3d& X) {
     s->col[j] = permutation ? perm[j] : j;
     s->sign[j] = permutation ? R_c(perm[j], j) : 1.0;
   }
+  // The permutation's number in run()'s switch: the first column, then whether the other two
+  // keep their order.
+  s->perm_code = 2 * s->col[0] + (s->col[1] < s->col[2] ? 0 : 1);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) s->m[j][i] = R_c(i, j);
     s->m[3][i] = p_c[i];
@@ -407,12 +410,35 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
     // [c | p] = [a | at] [R_c | p_c]; the sums in the order a0 * m0 + a1 * m1 + a2 * m2 (+ at
     // first for p). A signed permutation selects columns: for finite poses sign * column is
     // exactly the sum the general product forms with its exact zeros and ones (up to the sign
-    // of a zero). The columns are read back from the reference pose just stored (a register
-    // cannot be picked by index).
+    // of a zero). The columns are picked from registers by a switch over the six permutations
+    // (an index known only at run time would send them through memory: a store and a reload
+    // on the chain from one link to the next).
     if (s.identity_R) {
       c[0] = a[0], c[1] = a[1], c[2] = a[2];
     } else if (s.perm) {
-      for (int j = 0; j < 3; ++j) c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * s.sign[j];
+      // The columns picked from registers, each permutation with constant indices.
+      Column p0, p1, p2;
+      switch (s.perm_code) {
+        case 0:  // (0, 1, 2)
+          p0 = a[0], p1 = a[1], p2 = a[2];
+          break;
+        case 1:  // (0, 2, 1)
+          p0 = a[0], p1 = a[2], p2 = a[1];
+          break;
+        case 2:  // (1, 0, 2)
+          p0 = a[1], p1 = a[0], p2 = a[2];
+          break;
+        case 3:  // (1, 2, 0)
+          p0 = a[1], p1 = a[2], p2 = a[0];
+          break;
+        case 4:  // (2, 0, 1)
+          p0 = a[2], p1 = a[0], p2 = a[1];
+          break;
+        default:  // (2, 1, 0)
+          p0 = a[2], p1 = a[1], p2 = a[0];
+          break;
+      }
+      c[0] = p0 * s.sign[0], c[1] = p1 * s.sign[1], c[2] = p2 * s.sign[2];
     } else {
       for (int j = 0; j < 3; ++j) c[j] = a[0] * s.m[j][0] + a[1] * s.m[j][1] + a[2] * s.m[j][2];
     }

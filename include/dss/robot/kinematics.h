@@ -85,6 +85,7 @@ class Kinematics {
     /// the product is sign[j] times column col[j] of the reference pose, with no sum.
     bool perm;
     int col[3];
+    int perm_code;  // col as a number, 2 * col[0] + (col[1] < col[2] ? 0 : 1)
     double sign[3];
     Motion motion;
     /// Translations along the columns of the pose (after the constant frame, before the
