@@ -15,6 +15,7 @@
 #include "dss/core/any_shape_query.h"
 #include "dss/robot/urdf_loader.h"
 #include "support/checker_fixtures.h"
+#include "support/temp_files.h"
 
 namespace {
 
@@ -114,9 +115,7 @@ BOOST_AUTO_TEST_CASE(links_that_never_meet_are_never_colliding) {
     <limit lower="-1e300" upper="1e300" effort="1" velocity="1"/></joint>
 </robot>
 )";
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "dss_test_apart.urdf").string();
-  std::ofstream(path) << urdf;
+  const std::string path = dss_test::writeScratch("wide_limits", "apart.urdf", urdf);
   dss::LoadedRobot robot;
   robot.model = std::make_shared<const dss::RobotModel>(dss::loadUrdf(path));
   const dss::ModelSetup setup = dss::setupModel(robot, dss::Scene{}, "", {});

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "dss/mesh/mesh.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
@@ -17,15 +18,7 @@ using Eigen::Vector3d;
 namespace {
 
 std::string write(const std::string& name, const std::string& text) {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::temp_directory_path() / ("dss_test_mesh_input_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  const fs::path p = dir / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return dss_test::writeScratch("mesh_input", name, text);
 }
 
 // A unit corner tetrahedron with outward triangles (12 STL vertices).

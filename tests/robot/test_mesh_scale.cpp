@@ -15,20 +15,13 @@
 #include "dss/robot/urdf_loader.h"
 #include "dss/scene/scene_error.h"
 #include "dss/scene/urdf_world.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::temp_directory_path() / ("dss_test_mesh_scale_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+fs::path scratch() { return dss_test::scratchDir("mesh_scale"); }
 
 std::string write(const std::string& name, const std::string& text) {
   const fs::path p = scratch() / name;

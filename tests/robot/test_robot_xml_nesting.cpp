@@ -11,6 +11,7 @@
 
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
+#include "support/temp_files.h"
 #include "support/thrown_message.h"
 
 namespace fs = std::filesystem;
@@ -42,15 +43,10 @@ BOOST_AUTO_TEST_CASE(a_deeply_nested_urdf_is_refused_before_parsing) {
   BOOST_TEST(dss_test::thrownMessage([&] { dss::loadUrdfString(text, "deep.urdf", "."); }) ==
              expected);
   // Through a file too.
-  const fs::path dir =
-      fs::temp_directory_path() / ("dss_test_nesting_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path file = dir / "deep.urdf";
-  std::ofstream(file) << text;
+  const fs::path file = dss_test::writeScratch("nesting", "deep.urdf", text);
   BOOST_TEST(dss_test::thrownMessage([&] { dss::loadUrdf(file.string()); })
                  .find(file.string() + ":2:" + std::to_string(column) +
                        ": XML element nesting exceeds the limit of 256") == 0u);
-  fs::remove_all(dir);
 }
 
 BOOST_AUTO_TEST_CASE(the_urdf_limit_is_exact_and_raised_by_the_options) {

@@ -15,34 +15,17 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_files.h"
 #include "support/thrown_message.h"
 
 namespace dss_test {
 
 /// A folder of this test process for the files the tests write, removed at exit.
-inline std::filesystem::path scratchDir() {
-  struct Dir {
-    std::filesystem::path path;
-    Dir()
-        : path(std::filesystem::temp_directory_path() /
-               ("dss_test_scene_" + std::to_string(static_cast<long>(::getpid())))) {
-      std::filesystem::create_directories(path);
-    }
-    ~Dir() {
-      std::error_code ec;
-      std::filesystem::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
+inline std::filesystem::path scratchDir() { return scratchDir("scene"); }
 
 /// Writes `text` to `name` in scratchDir() (folders created); returns the path.
 inline std::string writeScratch(const std::string& name, const std::string& text) {
-  const std::filesystem::path p = scratchDir() / name;
-  std::filesystem::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return writeScratch("scene", name, text);
 }
 
 inline std::string scenesDir() { return std::string(DSS_SHARED_DIR) + "/scenes"; }

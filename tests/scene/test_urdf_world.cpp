@@ -18,9 +18,7 @@ namespace {
 std::string kitchenDir() { return scenesDir() + "/mbm_templates/configs/scenes/kitchen"; }
 
 std::string writeTemp(const std::string& name, const std::string& text) {
-  const auto p = std::filesystem::temp_directory_path() / name;
-  std::ofstream(p) << text;
-  return p.string();
+  return writeScratch(name, text);
 }
 }  // namespace
 

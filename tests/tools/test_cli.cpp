@@ -21,6 +21,7 @@
 
 #include "cli.h"
 #include "support/run_tool.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 
@@ -439,8 +440,7 @@ BOOST_AUTO_TEST_CASE(dss_check_and_dss_plan_usage_errors_exit_2) {
 // dss_check reads a scene mesh as one hull per connected part (two boards a metre apart: two
 // obstacles), or as one hull with --scene-mesh-parts 1.
 BOOST_AUTO_TEST_CASE(dss_check_scene_mesh_parts) {
-  const fs::path scene =
-      fs::temp_directory_path() / ("dss_test_mesh_parts_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path scene = dss_test::scratchDir("cli") / "mesh_parts.yaml";
   {
     std::ofstream out(scene);
     out << "world:\n  collision_objects:\n    - id: boards\n      meshes:\n        - vertices: [";

@@ -10,6 +10,7 @@
 
 #include "support/run_tool.h"
 #include "support/shared_data.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 
@@ -18,11 +19,7 @@ const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7/";
 const std::string kPanda = std::string(DSS_SHARED_DIR) + "/robots/panda/";
 const std::string kMbm = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda/box/";
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "dss_test_robot_states";
-  fs::create_directories(d);
-  return d / name;
-}
+fs::path scratch(const std::string& name) { return dss_test::scratchDir("robot_states") / name; }
 
 }  // namespace
 

@@ -13,27 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_files.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::temp_directory_path() / ("dss_test_tool_warnings_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(scratch(), ec);
-  }
-};
-BOOST_GLOBAL_FIXTURE(Cleanup);
+fs::path scratch() { return dss_test::scratchDir("tool_warnings"); }
 
 std::string write(const std::string& name, const std::string& text) {
   const fs::path p = scratch() / name;
