@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "support/shared_data.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -52,24 +53,8 @@ std::string readAll(const fs::path& p) {
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
-/// A scratch directory for this test process (removed at exit by the fixture).
-fs::path scratchDir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() /
-                 ("dss_pairs_test_" + std::to_string(static_cast<long>(::getpid())));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-struct ScratchCleanup {
-  ~ScratchCleanup() {
-    std::error_code ec;
-    fs::remove_all(scratchDir(), ec);
-  }
-};
-BOOST_GLOBAL_FIXTURE(ScratchCleanup);
+/// A scratch directory for this test process (removed at exit).
+fs::path scratchDir() { return dss_test::scratchDir("pairs"); }
 
 /// Runs dss_pairs with `args` (already shell-quoted where needed), stdin from `stdin_file`.
 Run runTool(const std::string& args, const std::string& stdin_file = "/dev/null") {
