@@ -18,8 +18,8 @@ below by the largest gap between their projections on the 15 separating axes, so
 printed is a lower bound of the true distance. Checked: robot vs obstacles, robot vs itself
 (link pairs the SRDF does not disable), joint limits, base inside the workspace. Also reports
 whether the straight interpolation start -> goal certainly collides (the centre of a robot
-element's box inside an obstacle box; that centre lies inside the element for boxes, cylinders,
-spheres and our meshes, which are symmetric about it). Exit status 0 when every gap is at
+element's box inside an obstacle primitive itself, a box, cylinder or sphere; that centre lies
+inside the element for boxes, cylinders, spheres and our meshes, which are symmetric about it). Exit status 0 when every gap is at
 least MIN_GAP (default 0.03 m) and every state is within limits and the workspace.
 """
 import math
@@ -140,6 +140,16 @@ def gap(A, B):
     return best
 
 
+def inside(typ, local, h):
+    """Whether a point (in the obstacle's frame) lies in the obstacle itself (h: obstacles())."""
+    x, y, z = local
+    if typ == "box":
+        return all(abs(v) <= e for v, e in zip(local, h))
+    if typ == "cylinder":
+        return x * x + y * y <= h[0] * h[0] and abs(z) <= h[2]
+    return x * x + y * y + z * z <= h[0] * h[0]  # sphere
+
+
 def obstacles(scene):
     out = []
     for obj in scene["world"]["collision_objects"]:
@@ -148,8 +158,14 @@ def obstacles(scene):
         for prim, pp in zip(obj["primitives"], obj["primitive_poses"]):
             R, c = compose(X0, (quat(pp["orientation"]), list(pp["position"])))
             d = prim["dimensions"]
-            h = {"box": [x / 2 for x in d], "cylinder": [d[1], d[1], d[0] / 2],
-                 "sphere": [d[0]] * 3}[prim["type"]]
+            if prim["type"] == "box":
+                h = [x / 2 for x in d]
+            elif prim["type"] == "cylinder":
+                h = [d[1], d[1], d[0] / 2]
+            elif prim["type"] == "sphere":
+                h = [d[0]] * 3
+            else:
+                raise ValueError(f"object {obj['id']}: unsupported primitive {prim['type']}")
             out.append((obj["id"], prim["type"], (R, c, h)))
     return out
 
@@ -238,7 +254,7 @@ def main(urdf, srdf, scene_path, request_path, min_gap=0.03):
         for _, n, (R, c, h) in world_boxes(elements, joints, vj, kind, q):
             for oid, typ, (Ro, co, ho) in obs:
                 local = [sum(Ro[k][i] * (c[k] - co[k]) for k in range(3)) for i in range(3)]
-                if typ == "box" and all(abs(x) <= e for x, e in zip(local, ho)):
+                if inside(typ, local, ho):
                     hits.append((t, n, oid))
     print("straight line start -> goal: " + (
         "certainly collides for t in [%.3f, %.3f] (first: %s in %s)" % (hits[0][0], hits[-1][0], *hits[0][1:])

@@ -1,5 +1,6 @@
-// Planar and floating bases end to end: our mobile base (planar virtual joint) in its aisle and
-// our free flyer (floating virtual joint) behind its window. Their groups become SE(2) and
+// Planar and floating bases end to end: our mobile base (planar virtual joint) in its aisle, our
+// free flyer (floating virtual joint) behind its window and our quadrotor (floating) among
+// trees. Their groups become SE(2) and
 // SE(3) parts of the state space (refused without translation bounds); states with the base
 // far away answer as the same robot placed there by a fixed joint; DSS and fcl-hull agree on
 // random states; the continuous validator never accepts a motion on which a dense check finds a
@@ -38,6 +39,8 @@ const Case kMobile{kRobots + "/dss_mobile_base", "dss_mobile_base.urdf", "dss_mo
                    "scenes/aisle.yaml", "scenes/aisle_request.yaml"};
 const Case kFlyer{kRobots + "/dss_free_flyer", "dss_free_flyer.urdf", "dss_free_flyer.srdf",
                   "scenes/window.yaml", "scenes/window_request.yaml"};
+const Case kQuadrotor{kRobots + "/dss_quadrotor", "dss_quadrotor.urdf", "dss_quadrotor.srdf",
+                      "scenes/forest.yaml", "scenes/forest_request.yaml"};
 
 // The robot bounded by its request's workspace, the request's start, and the problem.
 struct Loaded {
@@ -74,7 +77,7 @@ std::vector<double> sample(const dss::Problem& p, ob::StateSamplerPtr& sampler, 
 BOOST_AUTO_TEST_SUITE(mobile_bases)
 
 BOOST_AUTO_TEST_CASE(planar_and_floating_groups_become_se2_and_se3_parts) {
-  for (const Case* c : {&kMobile, &kFlyer}) {
+  for (const Case* c : {&kMobile, &kFlyer, &kQuadrotor}) {
     const Loaded l = load(*c);
     const auto compound = std::dynamic_pointer_cast<ob::CompoundStateSpace>(l.problem.map->space());
     BOOST_REQUIRE(compound);
@@ -84,7 +87,7 @@ BOOST_AUTO_TEST_CASE(planar_and_floating_groups_become_se2_and_se3_parts) {
       se3 += compound->getSubspace(k)->getType() == ob::STATE_SPACE_SE3;
     }
     BOOST_TEST(se2 == (c == &kMobile ? 1 : 0));
-    BOOST_TEST(se3 == (c == &kFlyer ? 1 : 0));
+    BOOST_TEST(se3 == (c == &kMobile ? 0 : 1));
     // Group values round trip through OMPL states (angles and quaternions as OMPL keeps them).
     ob::StateSamplerPtr sampler = l.problem.map->space()->allocStateSampler();
     ob::ScopedState<> s(l.problem.map->space()), t(l.problem.map->space());
@@ -155,7 +158,7 @@ BOOST_AUTO_TEST_CASE(a_base_far_away_answers_as_a_fixed_joint_placing_it_there) 
 }
 
 BOOST_AUTO_TEST_CASE(dss_and_fcl_hull_agree_on_random_states) {
-  for (const Case* c : {&kMobile, &kFlyer}) {
+  for (const Case* c : {&kMobile, &kFlyer, &kQuadrotor}) {
     const Loaded l = load(*c);
     const int n = 3000;
     const dss_test::Agreement t = dss_test::dssAgainstFclHull(l.problem, n);
@@ -211,7 +214,7 @@ BOOST_AUTO_TEST_CASE(an_obstacle_allowed_to_one_link_stays_allowed_deep_inside_i
 }
 
 BOOST_AUTO_TEST_CASE(continuous_validator_misses_nothing_a_dense_check_finds) {
-  for (const Case* c : {&kMobile, &kFlyer}) {
+  for (const Case* c : {&kMobile, &kFlyer, &kQuadrotor}) {
     const Loaded l = load(*c);
     // Motions of up to a quarter of the space's extent.
     const dss_test::MotionTally t = dss_test::continuousAgainstDense(l.problem, 300, 0.25);

@@ -1,6 +1,7 @@
 // dss_plan on a planar and a floating base, headless, as a user runs it: our mobile base
-// through its aisle (discrete and continuous motions, DSS and fcl-hull) and our free flyer
-// through its window; the solution path's CSV names the multi-DOF variables and reads back.
+// through its aisle (discrete and continuous motions, DSS and fcl-hull), our free flyer
+// through its window and our quadrotor across its clearing; the solution path's CSV names the
+// multi-DOF variables and reads back.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <fstream>
@@ -120,6 +121,21 @@ BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path
   BOOST_TEST(c.exit_code == 0, c.err);
   BOOST_TEST(c.out.find('0') == std::string::npos, c.out);
   BOOST_TEST(c.out.find('1') != std::string::npos, c.out);
+}
+
+// The quadrotor flies across its clearing with discrete and continuous motions and with
+// fcl-hull; the straight line runs through two trunks, so the planner meets colliding states.
+BOOST_AUTO_TEST_CASE(the_quadrotor_plans_across_its_clearing) {
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, {"--motion", "continuous"}, {"--checker", "fcl-hull"}}) {
+    std::vector<std::string> args = problem("dss_quadrotor", "forest");
+    args.insert(args.end(), extra.begin(), extra.end());
+    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+    BOOST_TEST(r.exit_code == 0, r.err);
+    BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
+    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+    BOOST_TEST(j.at("colliding_states").get<long>() > 0, r.out);
+  }
 }
 
 // dss_check --describe names the links that keep a sphere chain: the flyer's body, with a point
