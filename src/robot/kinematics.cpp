@@ -415,6 +415,10 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
     // on the chain from one link to the next).
     if (s.identity_R) {
       c[0] = a[0], c[1] = a[1], c[2] = a[2];
+    } else if (s.perm && std::is_same<Column, ScalarQuad>::value) {
+      // The scalar path reads the columns back from memory (its columns live there anyway; a
+      // switch of struct copies costs it a fifth of its time).
+      for (int j = 0; j < 3; ++j) c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * s.sign[j];
     } else if (s.perm) {
       // The columns picked from registers, each permutation with constant indices.
       Column p0, p1, p2;
