@@ -192,6 +192,7 @@ void CollisionModel::buildSlots() {
       e.slot = int(slots_.size());
       e.source = &ce;
       e.identity_LS = ce.X_LS.matrix() == Eigen::Matrix4d::Identity();
+      if (const auto* ball = std::get_if<Sphere>(&ce.shape)) e.ball_radius = ball->radius;
       if (e.has_inner_box && e.inner_box_c != e.box_center_S)
         throw std::logic_error("CollisionModel: the inner box of link " + link.name +
                                " is not centred on its local box");
@@ -457,10 +458,22 @@ std::vector<Obb> CollisionModel::pruneObstacles(const CollisionModelOptions& opt
     localBox(ob.shape, &c_S, &b.h);
     b.R = ob.X_WO.linear();
     b.axis_aligned = b.R == Eigen::Matrix3d::Identity();
+    b.ball = std::holds_alternative<Sphere>(ob.shape);  // c_S = 0, h = (r, r, r)
     b.c = ob.X_WO * c_S;
     obbs_.push_back(b);
     const auto* box = std::get_if<Box>(&ob.shape);
-    inner_half_.push_back(box ? box->half : Eigen::Vector3d::Constant(-1.0));
+    // The inner stage's box: a box obstacle itself, else the box inside a cylinder, capsule or
+    // ellipsoid (inner_shapes.h; about the centre of its local box), else none (spheres have
+    // the ball stage; hulls, which may come by the thousand from scene meshes, are left out).
+    Eigen::Vector3d inner_c, inner_h = Eigen::Vector3d::Constant(-1.0);
+    const bool round = std::holds_alternative<Cylinder>(ob.shape) ||
+                       std::holds_alternative<Capsule>(ob.shape) ||
+                       std::holds_alternative<Ellipsoid>(ob.shape);
+    if (box)
+      inner_h = box->half;
+    else if (!round || !innerBox(ob.shape, c_S, b.h, &inner_c, &inner_h) || inner_c != c_S)
+      inner_h = Eigen::Vector3d::Constant(-1.0);
+    inner_half_.push_back(inner_h);
     if (box && !allowed_somewhere[o]) {
       Obb exact = b;
       exact.c = ob.X_WO.translation();

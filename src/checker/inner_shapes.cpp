@@ -182,7 +182,10 @@ bool innerBox(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::
     return false;  // spheres (their ball is better) and cones
   }
   *h = (h->array() - shrink).matrix();
-  if (!(h->minCoeff() > 0.05 * box_h.maxCoeff())) return false;
+  // A hull's box thinner than 5 % of its local box holds little of it (a flat hull); a
+  // primitive's box is kept however thin (a box element's is the box itself).
+  const double thinnest = std::holds_alternative<ConvexHull>(shape) ? 0.05 * box_h.maxCoeff() : 0.0;
+  if (!(h->minCoeff() > thinnest)) return false;
   // Every corner inside the shape: h(u) >= u.c + |u|.h for every checked direction u.
   for (const auto& u : checkDirections(planes))
     if (!(supportValue(shape, u) >= u.dot(*c) + u.cwiseAbs().dot(*h))) return false;

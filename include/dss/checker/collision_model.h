@@ -90,6 +90,9 @@ class CollisionModel {
     Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
     bool identity_PS = false;
     Eigen::Vector3d center_P = Eigen::Vector3d::Zero();
+    /// The radius of the element when its shape is a sphere (centred at the shape frame's
+    /// origin), else negative: the ball stage (ball_stage.h) decides its pairs.
+    double ball_radius = -1.0;
   };
   /// A point of an element's chain of balls (sphere_chain.h), in the link frame and in the
   /// frame of the slot's pose link, with the radii of its outer ball and of its inner ball
@@ -179,8 +182,10 @@ class CollisionModel {
   /// World boxes and oriented boxes of the kept obstacles.
   const std::vector<Aabb>& obstacleBoxes() const { return boxes_; }
   const std::vector<Obb>& obstacleObbs() const { return obbs_; }
-  /// Half extents of obstacle o when it is a box (centred and turned as obstacleObbs()[o]),
-  /// else negative: the inner stage tests balls and boxes against it.
+  /// Half extents of a box inside obstacle o, centred and turned as obstacleObbs()[o]: the
+  /// obstacle itself when it is a box, else the inner box of a cylinder, capsule or ellipsoid
+  /// (inner_shapes.h: a cylinder's square section), else negative. The inner stage tests balls and
+  /// boxes against it.
   const Eigen::Vector3d& obstacleBoxHalf(int o) const { return inner_half_[o]; }
   /// Lower bounds on the distance to the obstacle boxes over the region the moving links
   /// reach: the first test of the sweep for each link sphere.

@@ -50,7 +50,7 @@ inline bool ballTouchesBox(const Eigen::Vector3d& c, double r, const Eigen::Matr
 /// local box (box_c, box_h) shrunk about its centre, axis by axis, until its corners lie
 /// inside every facet plane. Shrunk by a relative 1e-7 of the shape's size; every corner is
 /// checked against the support function as the balls are. False (no box) for spheres (their
-/// ball is better), cones, flat hulls and boxes thinner than 5 % of the local box.
+/// ball is better), cones, flat hulls, and hulls whose box is thinner than 5 % of the local box.
 bool innerBox(const AnyShape& shape, const Eigen::Vector3d& box_c, const Eigen::Vector3d& box_h,
               Eigen::Vector3d* c, Eigen::Vector3d* h);
 

@@ -13,6 +13,9 @@ struct Obb {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   Eigen::Vector3d h = Eigen::Vector3d::Zero();
   bool axis_aligned = false;  ///< R is exactly the identity (obbApartAxisAligned)
+  /// The obstacle is the ball inscribed in this box (a sphere obstacle: centre c, radius
+  /// h.x()); the sweep's ball stage (ball_stage.h) decides its pairs.
+  bool ball = false;
 };
 
 namespace detail {

@@ -5,7 +5,8 @@
 // Robot vs scene, per moving slot: the clearance grid (one lookup proves the slot's sphere
 // clear of every obstacle); the obstacles the sphere reaches (the grid's candidate lists, or
 // the sphere-box filter, two obstacle boxes at a time); each element's sphere against the box
-// (slots of several elements); the oriented-box stage, the inner stage (a box or a ball
+// (slots of several elements); the ball stage (a sphere obstacle or a sphere element against a
+// primitive: ball_stage.h), the oriented-box stage, the inner stage (a box or a ball
 // inside the element within the padding of a box obstacle proves a collision), the narrow
 // phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
 // (self_pair_table.h), the slots' spheres, the elements' spheres, the oriented-box stage, the
@@ -19,6 +20,7 @@
 #include <limits>
 #include <vector>
 
+#include "dss/checker/ball_stage.h"
 #include "dss/checker/collision_model.h"
 #include "dss/checker/inner_shapes.h"
 #include "dss/checker/obb.h"
@@ -104,6 +106,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   const std::vector<Element>& elements = model.elements();
   const std::vector<Aabb>& boxes = model.obstacleBoxes();
   const std::vector<Obb>& obbs = model.obstacleObbs();
+  const std::vector<Obstacle>& obstacles = model.scene().obstacles;
   const ClearanceGrid& grid = model.clearanceGrid();
   // World centres of the slot spheres, each computed as the robot-scene loop reaches its slot
   // (a collision found there leaves the rest uncomputed); the self pairs use them all
@@ -155,6 +158,18 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: not a box
       const bool inner =
           opt.inner_shapes && (el.has_inner_box || el.num_inner > 0) && half.x() >= 0.0;
+      if (opt.obb_stage) {
+        // The ball stage: a sphere obstacle against the element, or a sphere element against
+        // the obstacle, decided by a distance in closed form where the other is a primitive.
+        BoxStage v = BoxStage::kUnknown;
+        if (const Obb& ob = obbs[o]; ob.ball)
+          v = ballStage(el.source->shape, X_WS, ob.c, ob.h.x(), scene_padding);
+        else if (el.ball_radius >= 0.0)
+          v = ballStage(obstacles[o].shape, obstacles[o].X_WO, X_WS.translation(), el.ball_radius,
+                        scene_padding);
+        if (v == BoxStage::kApart) return false;
+        if (v == BoxStage::kTouch && opt.inner_shapes) return true;
+      }
       bool box_tested = false;  // the inner box, with the oriented boxes (boxStages)
       if (opt.obb_stage) {
         const Obb& ob = obbs[o];
@@ -190,9 +205,14 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       return scene(e, X_WS, o);
     };
     // Whether the sphere (cc, rr), which reaches obstacle o's world box, also reaches its
-    // oriented box: a turned obstacle (a wall at an angle) fills little of its world box.
+    // oriented box: a turned obstacle (a wall at an angle) fills little of its world box; a
+    // sphere obstacle only its own ball (with a relative margin against rounding).
     auto reachesObb = [&](const Eigen::Vector3d& cc, double rr, int o) {
       const Obb& ob = obbs[o];
+      if (ob.ball) {
+        const double reach = (rr + ob.h.x()) * (1.0 + 1e-12) + 1e-300;
+        return !((cc - ob.c).squaredNorm() > reach * reach);
+      }
       return ob.axis_aligned || !ballApartObb(cc, rr, ob);
     };
     // The obstacles whose boxes the sphere (cc, rr) reaches, each through `visit` (true: a
