@@ -17,16 +17,11 @@
 #include "dss/robot/urdf_loader.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/random_pose.h"
 
 namespace {
 
-Eigen::Isometry3d randomPose(std::mt19937_64& rng, double spread) {
-  std::normal_distribution<double> n;
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-  X.translation() = spread * Eigen::Vector3d(n(rng), n(rng), n(rng));
-  return X;
-}
+using dss_test::randomPose;
 
 // One of the four shapes the stage knows, of about `scale`.
 dss::AnyShape randomPrimitive(std::mt19937_64& rng, int kind, double scale) {

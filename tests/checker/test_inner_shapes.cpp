@@ -18,6 +18,7 @@
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
+#include "support/random_pose.h"
 #include "support/shared_data.h"
 
 namespace fs = std::filesystem;
@@ -128,13 +129,7 @@ std::size_t compareAnswers(const dss::CollisionModel& m, std::size_t n, std::uin
 
 dss::AnyShape box(const Eigen::Vector3d& h) { return dss::Box{h}; }
 
-Eigen::Isometry3d randomPose(std::mt19937_64& rng, double spread) {
-  std::normal_distribution<double> n;
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-  X.translation() = spread * Eigen::Vector3d(n(rng), n(rng), n(rng));
-  return X;
-}
+using dss_test::randomPose;
 
 }  // namespace
 
