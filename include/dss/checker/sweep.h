@@ -7,8 +7,8 @@
 // the sphere-box filter, two obstacle boxes at a time); each element's sphere against the box
 // (slots of several elements); the ball stage (a sphere obstacle or a sphere element against a
 // primitive: ball_stage.h), the oriented-box stage, the inner stage (a box or a ball
-// inside the element within the padding of a box obstacle proves a collision), the narrow
-// phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
+// inside the element within the padding of a box inside the obstacle proves a collision), the
+// narrow phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
 // (self_pair_table.h), the slots' spheres, the elements' spheres, the oriented-box stage, the
 // narrow phase. Every stage is conservative: it skips a pair only when the pair is proved
 // apart (beyond the padding) and reports a collision only when one is proved.
@@ -155,7 +155,7 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
       const Element& el = elements[e];
       Eigen::Isometry3d X_prod;
       const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
-      const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: not a box
+      const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: no box inside it
       const bool inner =
           opt.inner_shapes && (el.has_inner_box || el.num_inner > 0) && half.x() >= 0.0;
       if (opt.obb_stage) {
