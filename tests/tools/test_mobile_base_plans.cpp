@@ -25,30 +25,42 @@ std::vector<std::string> problem(const std::string& robot, const std::string& sc
           "--time",    "30"};
 }
 
+// dss_plan on the robot's problem with discrete motions, with continuous motions and with
+// fcl-hull: each run's exit status and "solved" are tested; `check` takes each run's first
+// JSON line (and the output, for messages).
+template <class Check>
+void planWithEachSetting(const std::string& robot, const std::string& scene, Check&& check) {
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, {"--motion", "continuous"}, {"--checker", "fcl-hull"}}) {
+    std::vector<std::string> args = problem(robot, scene);
+    args.insert(args.end(), extra.begin(), extra.end());
+    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
+    BOOST_TEST(r.exit_code == 0, r.err);
+    BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
+    check(nlohmann::json::parse(r.out.substr(0, r.out.find('\n'))), r.out);
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(mobile_base_plans)
 
 BOOST_AUTO_TEST_CASE(the_mobile_base_plans_through_its_aisle) {
-  for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{}, {"--motion", "continuous"}, {"--checker", "fcl-hull"}}) {
-    std::vector<std::string> args = problem("dss_mobile_base", "aisle");
-    args.insert(args.end(), extra.begin(), extra.end());
-    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
-    BOOST_TEST(r.exit_code == 0, r.err);
-    BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
-    // The states the planner asked about, and of them those found colliding: some of the base
-    // poses an RRT tries in the aisle run into its shelves.
-    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
-    const long checks = j.at("validity_checks").get<long>();
-    const long colliding = j.at("colliding_states").get<long>();
-    BOOST_TEST(checks > 0, r.out);
-    BOOST_TEST(colliding > 0, r.out);
-    BOOST_TEST(colliding < checks, r.out);
-    // The problem's setup time is reported (the model with its base-scene table is built).
-    const double setup = j.at("setup_s").get<double>();
-    BOOST_TEST((setup > 0.0 && std::isfinite(setup)), r.out);
-  }
+  planWithEachSetting("dss_mobile_base", "aisle",
+                      [](const nlohmann::json& j, const std::string& out) {
+                        // The states the planner asked about, and of them those found
+                        // colliding: some of the base poses an RRT tries in the aisle run into
+                        // its shelves.
+                        const long checks = j.at("validity_checks").get<long>();
+                        const long colliding = j.at("colliding_states").get<long>();
+                        BOOST_TEST(checks > 0, out);
+                        BOOST_TEST(colliding > 0, out);
+                        BOOST_TEST(colliding < checks, out);
+                        // The problem's setup time is reported (the model with its base-scene
+                        // table is built).
+                        const double setup = j.at("setup_s").get<double>();
+                        BOOST_TEST((setup > 0.0 && std::isfinite(setup)), out);
+                      });
 }
 
 // --base-table-cells: the mobile base's table against the aisle, by default and at a chosen
@@ -126,16 +138,10 @@ BOOST_AUTO_TEST_CASE(the_free_flyer_plans_through_its_window_and_writes_its_path
 // The quadrotor flies across its clearing with discrete and continuous motions and with
 // fcl-hull; the straight line runs through two trunks, so the planner meets colliding states.
 BOOST_AUTO_TEST_CASE(the_quadrotor_plans_across_its_clearing) {
-  for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{}, {"--motion", "continuous"}, {"--checker", "fcl-hull"}}) {
-    std::vector<std::string> args = problem("dss_quadrotor", "forest");
-    args.insert(args.end(), extra.begin(), extra.end());
-    const dss_test::ToolRun r = dss_test::runTool("dss_plan", args);
-    BOOST_TEST(r.exit_code == 0, r.err);
-    BOOST_TEST(r.out.find("\"solved\":true") != std::string::npos, r.out);
-    const nlohmann::json j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
-    BOOST_TEST(j.at("colliding_states").get<long>() > 0, r.out);
-  }
+  planWithEachSetting("dss_quadrotor", "forest",
+                      [](const nlohmann::json& j, const std::string& out) {
+                        BOOST_TEST(j.at("colliding_states").get<long>() > 0, out);
+                      });
 }
 
 // dss_check --describe names the links that keep a sphere chain: the flyer's body, with a point
