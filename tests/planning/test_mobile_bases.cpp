@@ -157,6 +157,63 @@ BOOST_AUTO_TEST_CASE(a_base_far_away_answers_as_a_fixed_joint_placing_it_there) 
   BOOST_TEST(colliding < compared);
 }
 
+// The free flyer on its floating joint answers as the same body carried by six joints from a
+// fixed root (dss_free_flyer_serial.urdf: x, y, z, then yaw, pitch, roll), pose for pose: the
+// quaternion of Rz(yaw) Ry(pitch) Rx(roll) on one side, the six joint values on the other.
+BOOST_AUTO_TEST_CASE(the_floating_flyer_answers_as_its_body_on_six_fixed_base_joints) {
+  const Loaded l = load(kFlyer);
+  const dss::LoadedRobot serial_robot =
+      dss::loadRobot(kFlyer.dir + "/dss_free_flyer_serial.urdf", "");
+  const dss::Problem serial =
+      dss::makeProblem(serial_robot, dss::loadScene(kFlyer.dir + "/" + kFlyer.scene), "", {});
+  const dss::RobotModel& mf = *l.robot.model;
+  const dss::RobotModel& ms = *serial_robot.model;
+  BOOST_REQUIRE(ms.numActiveJoints() == 6u);
+  const auto index = [](const dss::RobotModel& m, const std::string& name) {
+    const int i = m.variableIndex(name);
+    BOOST_REQUIRE_MESSAGE(i >= 0, name);
+    return i;
+  };
+  const int ft[3] = {index(mf, "base/trans_x"), index(mf, "base/trans_y"),
+                     index(mf, "base/trans_z")};
+  const int fr[4] = {index(mf, "base/rot_x"), index(mf, "base/rot_y"), index(mf, "base/rot_z"),
+                     index(mf, "base/rot_w")};
+  const int st[3] = {index(ms, "x"), index(ms, "y"), index(ms, "z")};
+  const int yaw = index(ms, "yaw"), pitch = index(ms, "pitch"), roll = index(ms, "roll");
+  const std::vector<std::shared_ptr<const dss::StateChecker>> floating = {
+      dss::makeStateChecker(l.problem.model, {"dss"}),
+      dss::makeStateChecker(l.problem.model, {"fcl-hull"})};
+  const std::vector<std::shared_ptr<const dss::StateChecker>> fixed = {
+      dss::makeStateChecker(serial.model, {"dss"}),
+      dss::makeStateChecker(serial.model, {"fcl-hull"})};
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int n = 3000;
+  int colliding = 0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d p(-3.0 + 6.0 * u(rng), -2.0 + 4.0 * u(rng), 3.0 * u(rng));
+    const double a = M_PI * (2.0 * u(rng) - 1.0), b = 0.5 * M_PI * (2.0 * u(rng) - 1.0),
+                 c = M_PI * (2.0 * u(rng) - 1.0);
+    std::vector<double> qs(ms.numActiveJoints()), qf = l.problem.model->held();
+    for (int i = 0; i < 3; ++i) qs[st[i]] = qf[ft[i]] = p[i];
+    qs[yaw] = a, qs[pitch] = b, qs[roll] = c;
+    const Eigen::Quaterniond q = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) *
+                                 Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(c, Eigen::Vector3d::UnitX());
+    qf[fr[0]] = q.x(), qf[fr[1]] = q.y(), qf[fr[2]] = q.z(), qf[fr[3]] = q.w();
+    const dss::StateVerdict v = floating[0]->check(qf.data());
+    BOOST_TEST((v != dss::StateVerdict::kInvalidInput), "state " << k);
+    for (std::size_t i = 0; i < 2; ++i) {
+      BOOST_TEST((floating[i]->check(qf.data()) == v), floating[i]->name() << " state " << k);
+      BOOST_TEST((fixed[i]->check(qs.data()) == v), fixed[i]->name() << " state " << k);
+    }
+    colliding += v == dss::StateVerdict::kColliding;
+  }
+  // Both answers occur (the test can fail both ways).
+  BOOST_TEST(colliding > 0);
+  BOOST_TEST(colliding < n);
+}
+
 BOOST_AUTO_TEST_CASE(dss_and_fcl_hull_agree_on_random_states) {
   for (const Case* c : {&kMobile, &kFlyer, &kQuadrotor}) {
     const Loaded l = load(*c);
