@@ -82,7 +82,7 @@ BOOST_AUTO_TEST_SUITE(robot_input_limits)
 
 BOOST_AUTO_TEST_CASE(every_real_file_fits_the_largest_seen_values, DSS_NEEDS_SHARED) {
   BOOST_REQUIRE(fs::is_directory(kShared));
-  BOOST_TEST(files(".urdf").size() == 20u + 4u);  // shared robots + ours
+  BOOST_TEST(files(".urdf").size() == 20u + 5u);  // shared robots + ours
   BOOST_TEST(files(".srdf").size() == 5u + 4u);
   BOOST_TEST(firstRefusal(largestSeen()) == "");
 }
