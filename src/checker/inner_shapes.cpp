@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "dss/checker/ball_stage.h"
 #include "dss/mesh/mesh.h"
 
 namespace dss {
@@ -49,16 +50,15 @@ double supportValue(const AnyShape& shape, const Eigen::Vector3d& u) {
 }
 
 // The distance from c to the boundary of `shape` (negative outside; -1 for cones, which get
-// no inner balls), from its facet planes for a hull.
+// no inner balls): minus the signed distance (ball_stage.h) for a box, sphere, cylinder or
+// capsule, from its facet planes for a hull.
 double boundaryDistance(const AnyShape& shape, const std::vector<Eigen::Vector4d>& planes,
                         const Eigen::Vector3d& c) {
-  if (const auto* s = std::get_if<Sphere>(&shape)) return s->radius - c.norm();
-  if (const auto* b = std::get_if<Box>(&shape)) return (b->half - c.cwiseAbs()).minCoeff();
-  if (const auto* y = std::get_if<Cylinder>(&shape))
-    return std::min(y->radius - c.head<2>().norm(), y->half_length - std::abs(c.z()));
-  if (const auto* k = std::get_if<Capsule>(&shape))
-    return k->radius -
-           Eigen::Vector3d(c.x(), c.y(), std::max(0.0, std::abs(c.z()) - k->half_length)).norm();
+  if (std::holds_alternative<Sphere>(shape) || std::holds_alternative<Box>(shape) ||
+      std::holds_alternative<Cylinder>(shape) || std::holds_alternative<Capsule>(shape)) {
+    double size = 0.0;
+    return -pointDistance(shape, c, &size);
+  }
   if (const auto* e = std::get_if<Ellipsoid>(&shape)) return e->radii.minCoeff() - c.norm();
   if (std::holds_alternative<ConvexHull>(shape)) {
     double r = std::numeric_limits<double>::infinity();
