@@ -28,6 +28,9 @@ const char* kUsage =
     "           finds collisions sooner (the same verdicts), ompl with OMPL's own validator,\n"
     "           continuous certifies the whole motion\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
+    "           --nearest vector|ompl (vector): the tree planners' nearest-neighbour search\n"
+    "           on a joint-value space: vector scans the states' values four at a time (the\n"
+    "           same distances, so the same trees), ompl keeps the planner's default (GNAT)\n"
     "           --workspace XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (bounds of planar and floating\n"
     "           joints' translation; default: the request's workspace_parameters)\n"
     "           --base-table-cells N (a planar base's table against the scene: at most about\n"
@@ -104,6 +107,8 @@ Args parseArgs(int argc, char** argv) {
       a.checker = cli.value(), checker_given = true;
     else if (cli.option("--motion"))
       a.motion = cli.value();
+    else if (cli.option("--nearest"))
+      a.nearest = cli.value();
     else if (cli.option("--time"))
       a.time = cli.number(1e-6, 1e6);
     else if (cli.option("--seed"))
@@ -184,6 +189,8 @@ Args parseArgs(int argc, char** argv) {
       cli.error("--checker: unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");
   if (a.motion != "discrete" && a.motion != "continuous" && a.motion != "ompl")
     cli.error("--motion: expected discrete, continuous or ompl, got '" + a.motion + "'");
+  if (a.nearest != "vector" && a.nearest != "ompl")
+    cli.error("--nearest: expected vector or ompl, got '" + a.nearest + "'");
   if (a.motion == "continuous" && a.checker_list != std::vector<std::string>{"dss"})
     cli.error("--motion continuous needs --checker dss (the continuous validator is DSS's)");
   if (!a.benchmark) {

@@ -12,7 +12,8 @@ namespace dss_plan {
 /// dss_plan's options (dss_plan --help describes each).
 struct Args {
   std::string robot, srdf, scene, request, problems, planner = "RRTConnect", checker = "dss",
-                                                     motion = "discrete", path, render;
+                                                     motion = "discrete", path, render,
+                                                     nearest = "vector";
   double min_fraction = 1.0 / 1024.0;
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;

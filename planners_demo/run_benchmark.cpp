@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "benchmark_log.h"
+#include "dss/planning/vector_nearest_neighbors.h"
 #include "invalid_state.h"
 #include "planner_registry.h"
 
@@ -114,10 +115,13 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     b.addExperimentParameter("dss_mode", "TEXT", dss::toString(a.dss_options.mode));
     b.addExperimentParameter("dss_max_iterations", "INTEGER",
                              std::to_string(a.dss_options.max_iterations));
+    b.addExperimentParameter("nearest", "TEXT", a.nearest);
     for (const auto& planner : a.planner_list)
-      for (const auto& c : checkers)
-        b.addPlanner(
-            std::make_shared<CheckerBoundPlanner>(planners().at(planner)(p.si), c, switching));
+      for (const auto& c : checkers) {
+        ob::PlannerPtr inner = planners().at(planner)(p.si);
+        if (a.nearest == "vector") dss::useVectorNearestNeighbors(inner, p.si->getStateSpace());
+        b.addPlanner(std::make_shared<CheckerBoundPlanner>(inner, c, switching));
+      }
     // Paired seeds: before run j of every entry, OMPL's seed generator restarts from seed + j, so
     // the sampler the planner allocates for that run draws the same states for every checker
     // (RRTConnect[dss] and RRTConnect[fcl-hull] then explore identically wherever the checkers

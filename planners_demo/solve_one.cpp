@@ -15,6 +15,7 @@
 
 #include "dss/core/simd_path.h"
 #include "dss/planning/continuous_motion_validator.h"
+#include "dss/planning/vector_nearest_neighbors.h"
 #include "dss/robot/joint_states_csv.h"
 #include "invalid_state.h"
 #include "path_replay.h"
@@ -126,6 +127,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   } else if (a.motion == "discrete") {
     p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker));
   }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
+  const bool vector_nearest = a.nearest == "vector" && dss::useVectorNearestNeighbors(
+                                                           ss.getPlanner(), p.si->getStateSpace());
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
@@ -190,6 +193,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (timed) j["checking_time_s"] = timed->seconds();
   j["planner"] = a.planner;
   j["motion"] = a.motion;
+  j["nearest"] = vector_nearest ? "vector" : "ompl";
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();

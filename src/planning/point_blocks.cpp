@@ -1,0 +1,216 @@
+// PointBlocks: the scans, four points at a time, on the instruction set picked at run time.
+#include "dss/planning/point_blocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace dss {
+
+namespace {
+
+// Four doubles: one AVX register in a function compiled for AVX2, two SSE2 registers otherwise.
+// The scalar path works lane by lane. Every path forms each difference, square and sum alone
+// (no fused multiply-add), in the same order: the same distances to the bit.
+using Quad = double __attribute__((vector_size(32)));
+
+// (GCC notes that a 32-byte vector is passed differently with AVX; every function here that
+// passes one is inlined, and the AVX2 ones take and return only pointers, sizes and doubles. GCC
+// reports the note at the end of the file, so it is silenced for the whole file.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+// The squared distances of one block to q, summed from the first value (0 + d0^2 is d0^2
+// exactly, as OMPL's sum from 0.0).
+__attribute__((always_inline)) inline Quad blockQuad(const double* block, const double* q,
+                                                     unsigned dim) {
+  Quad acc = {0.0, 0.0, 0.0, 0.0};
+  for (unsigned d = 0; d < dim; ++d) {
+    Quad v;
+    std::memcpy(&v, block + 4 * d, sizeof v);
+    const Quad diff = v - q[d];
+    acc = acc + diff * diff;
+  }
+  return acc;
+}
+
+__attribute__((always_inline)) inline std::size_t nearestQuad(const double* data,
+                                                              std::size_t blocks, unsigned dim,
+                                                              const double* q, double& best) {
+  std::size_t best_i = PointBlocks::kNone;
+  for (std::size_t b = 0; b < blocks; ++b, data += std::size_t(dim) * 4) {
+    const Quad dist = blockQuad(data, q, dim);
+    const auto below = dist < best;  // false for NaN
+    if (!(below[0] | below[1] | below[2] | below[3])) continue;
+    for (int l = 0; l < 4; ++l)
+      if (dist[l] < best) {
+        best = dist[l];
+        best_i = 4 * b + std::size_t(l);
+      }
+  }
+  return best_i;
+}
+
+__attribute__((always_inline)) inline void distancesQuad(const double* data, std::size_t blocks,
+                                                         unsigned dim, const double* q,
+                                                         double* out) {
+  for (std::size_t b = 0; b < blocks; ++b, data += std::size_t(dim) * 4) {
+    const Quad dist = blockQuad(data, q, dim);
+    std::memcpy(out + 4 * b, &dist, sizeof dist);
+  }
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+__attribute__((target("avx2"))) std::size_t nearestAvx2(const double* data, std::size_t blocks,
+                                                        unsigned dim, const double* q,
+                                                        double& best) {
+  return nearestQuad(data, blocks, dim, q, best);
+}
+__attribute__((target("avx2"))) void distancesAvx2(const double* data, std::size_t blocks,
+                                                   unsigned dim, const double* q, double* out) {
+  distancesQuad(data, blocks, dim, q, out);
+}
+#else
+std::size_t nearestAvx2(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                        double& best) {
+  return nearestQuad(data, blocks, dim, q, best);
+}
+void distancesAvx2(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                   double* out) {
+  distancesQuad(data, blocks, dim, q, out);
+}
+#endif
+
+std::size_t nearestSse2(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                        double& best) {
+  return nearestQuad(data, blocks, dim, q, best);
+}
+void distancesSse2(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                   double* out) {
+  distancesQuad(data, blocks, dim, q, out);
+}
+
+// One point at a time, value by value.
+void distancesScalar(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                     double* out) {
+  for (std::size_t b = 0; b < blocks; ++b, data += std::size_t(dim) * 4)
+    for (int l = 0; l < 4; ++l) {
+      double acc = 0.0;
+      for (unsigned d = 0; d < dim; ++d) {
+        const double diff = data[4 * d + l] - q[d];
+        acc += diff * diff;
+      }
+      out[4 * b + l] = acc;
+    }
+}
+std::size_t nearestScalar(const double* data, std::size_t blocks, unsigned dim, const double* q,
+                          double& best) {
+  std::size_t best_i = PointBlocks::kNone;
+  double dist[4];
+  for (std::size_t b = 0; b < blocks; ++b, data += std::size_t(dim) * 4) {
+    distancesScalar(data, 1, dim, q, dist);
+    for (int l = 0; l < 4; ++l)
+      if (dist[l] < best) {
+        best = dist[l];
+        best_i = 4 * b + std::size_t(l);
+      }
+  }
+  return best_i;
+}
+
+}  // namespace
+
+PointBlocks::PointBlocks(unsigned dimension) : dim_(dimension), path_(activeSimdPath()) {}
+
+PointBlocks::PointBlocks(unsigned dimension, SimdPath path)
+    : dim_(dimension), path_(simdPathAvailable(path) ? path : bestSimdPath()) {}
+
+void PointBlocks::push(const double* v) {
+  if (n_ % 4 == 0)
+    data_.resize(data_.size() + std::size_t(dim_) * 4, std::numeric_limits<double>::quiet_NaN());
+  double* p = place(n_);
+  for (unsigned d = 0; d < dim_; ++d) p[4 * d] = v[d];
+  ++n_;
+}
+
+void PointBlocks::swapRemove(std::size_t i) {
+  const std::size_t last = n_ - 1;
+  double* to = place(i);
+  double* from = place(last);
+  for (unsigned d = 0; d < dim_; ++d) {
+    to[4 * d] = from[4 * d];
+    from[4 * d] = std::numeric_limits<double>::quiet_NaN();
+  }
+  --n_;
+  if (n_ % 4 == 0) data_.resize(data_.size() - std::size_t(dim_) * 4);
+}
+
+void PointBlocks::get(std::size_t i, double* v) const {
+  const double* p = place(i);
+  for (unsigned d = 0; d < dim_; ++d) v[d] = p[4 * d];
+}
+
+std::size_t PointBlocks::nearest(const double* q) const {
+  if (n_ == 0) return kNone;
+  const std::size_t blocks = (n_ + 3) / 4;
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t i = kNone;
+  switch (path_) {
+    case SimdPath::kAvx2:
+      i = nearestAvx2(data_.data(), blocks, dim_, q, best);
+      break;
+    case SimdPath::kSse2:
+      i = nearestSse2(data_.data(), blocks, dim_, q, best);
+      break;
+    case SimdPath::kScalar:
+      i = nearestScalar(data_.data(), blocks, dim_, q, best);
+      break;
+  }
+  return i == kNone ? 0 : i;
+}
+
+const double* PointBlocks::allDistances(const double* q) const {
+  thread_local std::vector<double> out;
+  const std::size_t blocks = (n_ + 3) / 4;
+  if (out.size() < 4 * blocks) out.resize(4 * blocks);
+  switch (path_) {
+    case SimdPath::kAvx2:
+      distancesAvx2(data_.data(), blocks, dim_, q, out.data());
+      break;
+    case SimdPath::kSse2:
+      distancesSse2(data_.data(), blocks, dim_, q, out.data());
+      break;
+    case SimdPath::kScalar:
+      distancesScalar(data_.data(), blocks, dim_, q, out.data());
+      break;
+  }
+  return out.data();
+}
+
+void PointBlocks::nearestK(const double* q, std::size_t k, std::vector<Found>& out) const {
+  out.clear();
+  if (k == 0 || n_ == 0) return;
+  const double* dist = allDistances(q);
+  // A max-heap of the k nearest so far; (distance, index) pairs order ties by index.
+  for (std::size_t i = 0; i < n_; ++i) {
+    const Found e{std::isnan(dist[i]) ? std::numeric_limits<double>::infinity() : dist[i], i};
+    if (out.size() < k) {
+      out.push_back(e);
+      std::push_heap(out.begin(), out.end());
+    } else if (e < out.front()) {
+      std::pop_heap(out.begin(), out.end());
+      out.back() = e;
+      std::push_heap(out.begin(), out.end());
+    }
+  }
+  std::sort_heap(out.begin(), out.end());
+}
+
+void PointBlocks::withinRadius(const double* q, double radius, std::vector<Found>& out) const {
+  out.clear();
+  if (n_ == 0) return;
+  const double* dist = allDistances(q);
+  for (std::size_t i = 0; i < n_; ++i)
+    if (std::sqrt(dist[i]) <= radius) out.emplace_back(dist[i], i);
+  std::sort(out.begin(), out.end());
+}
+
+}  // namespace dss
