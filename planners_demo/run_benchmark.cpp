@@ -119,7 +119,7 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     for (const auto& planner : a.planner_list)
       for (const auto& c : checkers) {
         ob::PlannerPtr inner = planners().at(planner)(p.si);
-        if (a.nearest == "vector") dss::useVectorNearestNeighbors(inner, p.si->getStateSpace());
+        if (a.nearest == "vector") dss::useVectorNearestNeighbors(inner);
         b.addPlanner(std::make_shared<CheckerBoundPlanner>(inner, c, switching));
       }
     // Paired seeds: before run j of every entry, OMPL's seed generator restarts from seed + j, so

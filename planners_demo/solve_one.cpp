@@ -127,8 +127,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   } else if (a.motion == "discrete") {
     p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker));
   }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
-  const bool vector_nearest = a.nearest == "vector" && dss::useVectorNearestNeighbors(
-                                                           ss.getPlanner(), p.si->getStateSpace());
+  const bool vector_nearest =
+      a.nearest == "vector" && dss::useVectorNearestNeighbors(ss.getPlanner());
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);

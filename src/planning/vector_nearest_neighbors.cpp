@@ -24,11 +24,12 @@ bool install(ompl::base::Planner* planner) {
 }
 }  // namespace
 
-bool useVectorNearestNeighbors(const ompl::base::PlannerPtr& planner,
-                               const ompl::base::StateSpacePtr& space) {
+bool useVectorNearestNeighbors(const ompl::base::PlannerPtr& planner) {
   namespace og = ompl::geometric;
-  const auto* rv = dynamic_cast<const ompl::base::RealVectorStateSpace*>(space.get());
-  if (!planner || !rv || rv->getDimension() == 0) return false;
+  if (!planner || !planner->getSpaceInformation()) return false;
+  const auto* rv = dynamic_cast<const ompl::base::RealVectorStateSpace*>(
+      planner->getSpaceInformation()->getStateSpace().get());
+  if (!rv || rv->getDimension() == 0) return false;
   unsigned& pending = detail::pendingNearestDimension();
   pending = rv->getDimension();
   bool done = false;

@@ -5,6 +5,7 @@
 // and queries, on both sides of its linear limit; and seeded plans with it against plans with
 // the planners' default structure: the same checks, the same paths.
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/BiTRRT.h>
@@ -276,8 +277,7 @@ BOOST_AUTO_TEST_CASE(seeded_plans_are_the_plans_with_the_default_structure) {
       ss.setPlanner(std::make_shared<og::RRTConnect>(p.si));
     else
       ss.setPlanner(std::make_shared<og::BiTRRT>(p.si));
-    BOOST_REQUIRE(!vector ||
-                  dss::useVectorNearestNeighbors(ss.getPlanner(), p.si->getStateSpace()));
+    BOOST_REQUIRE(!vector || dss::useVectorNearestNeighbors(ss.getPlanner()));
     ob::ScopedState<> start(p.si->getStateSpace()), goal(p.si->getStateSpace());
     const auto g0 = p.map->groupValues(req.startState());
     p.map->fromGroupValues(g0.data(), start.get());
@@ -319,12 +319,15 @@ BOOST_AUTO_TEST_CASE(other_planners_and_spaces_keep_their_structure) {
                                     req.group_name, req.startState());
   p.si->setStateValidityChecker(dss::makeValidityChecker(p, {"dss"}));
   p.si->setup();
-  BOOST_CHECK(
-      !dss::useVectorNearestNeighbors(std::make_shared<og::PRM>(p.si), p.si->getStateSpace()));
-  BOOST_CHECK(!dss::useVectorNearestNeighbors(nullptr, p.si->getStateSpace()));
+  BOOST_CHECK(!dss::useVectorNearestNeighbors(std::make_shared<og::PRM>(p.si)));
+  BOOST_CHECK(!dss::useVectorNearestNeighbors(nullptr));
+  // A space with an SO(2) part: not a joint-value vector.
   auto compound = std::make_shared<ob::CompoundStateSpace>();
   compound->addSubspace(std::make_shared<ob::RealVectorStateSpace>(2), 1.0);
-  BOOST_CHECK(!dss::useVectorNearestNeighbors(std::make_shared<og::RRTConnect>(p.si), compound));
+  compound->addSubspace(std::make_shared<ob::SO2StateSpace>(), 1.0);
+  auto si = std::make_shared<ob::SpaceInformation>(compound);
+  BOOST_CHECK(!dss::useVectorNearestNeighbors(std::make_shared<og::RRTConnect>(si)));
+  BOOST_CHECK(dss::useVectorNearestNeighbors(std::make_shared<og::RRTConnect>(p.si)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

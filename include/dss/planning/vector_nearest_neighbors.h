@@ -11,7 +11,7 @@
 // it; it reads the values of `item->state`, which the items of OMPL's tree planners hold.
 //
 // The dimension is fixed when the structure is built, which OMPL's planners do with no
-// argument: useVectorNearestNeighbors() builds it in a planner for a space's dimension.
+// argument: useVectorNearestNeighbors() builds it in a planner for its space's dimension.
 #pragma once
 
 #include <ompl/base/Planner.h>
@@ -152,9 +152,9 @@ class VectorNearestNeighbors : public ompl::NearestNeighbors<T> {
 };
 
 /// Builds VectorNearestNeighbors into `planner` (RRTConnect, RRT, RRTstar, LazyRRT or BiTRRT)
-/// when `space` is a RealVectorStateSpace; the planner is cleared and set up again (call it
-/// before planning). Returns false, the planner unchanged, for other planners and spaces.
-bool useVectorNearestNeighbors(const ompl::base::PlannerPtr& planner,
-                               const ompl::base::StateSpacePtr& space);
+/// when its space is a RealVectorStateSpace; the planner is cleared and set up again, so call
+/// it once the space information has its validity checker, before planning. Returns false, the
+/// planner unchanged, for other planners and spaces.
+bool useVectorNearestNeighbors(const ompl::base::PlannerPtr& planner);
 
 }  // namespace dss
