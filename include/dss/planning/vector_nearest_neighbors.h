@@ -14,6 +14,10 @@
 // argument: useVectorNearestNeighbors() builds it in a planner for its space's dimension.
 #pragma once
 
+// clang-format off
+#include <iostream>  // before GNAT's header, which uses std::cout without including it
+// clang-format on
+
 #include <ompl/base/Planner.h>
 #include <ompl/base/StateSpace.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -24,7 +28,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <iostream>  // before GNAT's header, which uses std::cout without including it
 #include <memory>
 #include <stdexcept>
 #include <utility>
