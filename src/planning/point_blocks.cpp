@@ -58,26 +58,14 @@ __attribute__((always_inline)) inline void distancesQuad(const double* data, std
   }
 }
 
-#if defined(__x86_64__) || defined(__i386__)
-__attribute__((target("avx2"))) std::size_t nearestAvx2(const double* data, std::size_t blocks,
-                                                        unsigned dim, const double* q,
-                                                        double& best) {
+DSS_TARGET_AVX2 std::size_t nearestAvx2(const double* data, std::size_t blocks, unsigned dim,
+                                        const double* q, double& best) {
   return nearestQuad(data, blocks, dim, q, best);
 }
-__attribute__((target("avx2"))) void distancesAvx2(const double* data, std::size_t blocks,
-                                                   unsigned dim, const double* q, double* out) {
+DSS_TARGET_AVX2 void distancesAvx2(const double* data, std::size_t blocks, unsigned dim,
+                                   const double* q, double* out) {
   distancesQuad(data, blocks, dim, q, out);
 }
-#else
-std::size_t nearestAvx2(const double* data, std::size_t blocks, unsigned dim, const double* q,
-                        double& best) {
-  return nearestQuad(data, blocks, dim, q, best);
-}
-void distancesAvx2(const double* data, std::size_t blocks, unsigned dim, const double* q,
-                   double* out) {
-  distancesQuad(data, blocks, dim, q, out);
-}
-#endif
 
 std::size_t nearestSse2(const double* data, std::size_t blocks, unsigned dim, const double* q,
                         double& best) {

@@ -549,14 +549,9 @@ void Kinematics::computeSse2(const double* q, Eigen::Isometry3d* X_WL) const {
   run<PairColumn>(q, X_WL);
 }
 
-#if defined(__x86_64__) || defined(__i386__)
-__attribute__((target("avx2"))) void Kinematics::computeAvx2(const double* q,
-                                                             Eigen::Isometry3d* X_WL) const {
+DSS_TARGET_AVX2 void Kinematics::computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const {
   run<Quad>(q, X_WL);
 }
-#else
-void Kinematics::computeAvx2(const double* q, Eigen::Isometry3d* X_WL) const { run<Quad>(q, X_WL); }
-#endif
 #pragma GCC diagnostic pop
 
 void Kinematics::computeOn(SimdPath path, const double* q, Eigen::Isometry3d* X_WL) const {

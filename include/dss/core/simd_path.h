@@ -8,6 +8,14 @@
 // the CPU lacks falls back to the best one it has); an unknown value is ignored.
 #pragma once
 
+/// Compiles a function for AVX2 (its callers pick it only where activeSimdPath() is kAvx2);
+/// nothing where the compiler does not target x86, whose AVX2 path then runs the generic code.
+#if defined(__x86_64__) || defined(__i386__)
+#define DSS_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define DSS_TARGET_AVX2
+#endif
+
 namespace dss {
 
 enum class SimdPath { kScalar, kSse2, kAvx2 };
