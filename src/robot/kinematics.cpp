@@ -80,8 +80,13 @@ __attribute__((always_inline)) inline void fastSinCosLanes(const double* x, doub
     std::memcpy(c_out + i, &co, sizeof co);
     // Beyond the reduction's range (joints without limits, or limits far beyond a turn) libm
     // takes over: a rare branch, and every finite angle stays right.
-    for (int k = i; k < i + kLanes; ++k)
-      if (std::abs(x[k]) >= 1e5) s_out[k] = std::sin(x[k]), c_out[k] = std::cos(x[k]);
+    // (One test for the lanes together: |x| >= 1e5 in any of them, a NaN in none.)
+    const VBits big = (VBits)((V)((VBits)xi & ~kSign) >= 1e5);
+    VBits any = big;
+    for (int l = 1; l < kLanes; ++l) any[0] |= big[l];
+    if (any[0])
+      for (int k = i; k < i + kLanes; ++k)
+        if (std::abs(x[k]) >= 1e5) s_out[k] = std::sin(x[k]), c_out[k] = std::cos(x[k]);
   }
 }
 
@@ -228,7 +233,7 @@ Kinematics::Kinematics(const RobotModel& model, const std::vector<char>& wanted)
     steps_.push_back(s);
     updated_.push_back(s.link);
   }
-  foldTranslations(wanted);  // also numbers the axis-aligned rotations (trig_steps_)
+  foldTranslations(wanted);  // also numbers the axis-aligned rotations (trig_args_)
 }
 
 void Kinematics::foldTranslations(const std::vector<char>& wanted) {
@@ -269,14 +274,27 @@ void Kinematics::foldTranslations(const std::vector<char>& wanted) {
     steps_[i + 1] = merged;
     steps_.erase(steps_.begin() + std::ptrdiff_t(i));
   }
-  trig_steps_.clear();
-  for (std::size_t i = 0; i < steps_.size(); ++i) {
-    Step& s = steps_[i];
+  trig_args_.clear();
+  for (Step& s : steps_) {
     s.trig = -1;
     if (s.motion == Motion::kRotX || s.motion == Motion::kRotY || s.motion == Motion::kRotZ) {
-      s.trig = static_cast<int>(trig_steps_.size());
-      trig_steps_.push_back(static_cast<int>(i));
+      s.trig = static_cast<int>(trig_args_.size());
+      trig_args_.push_back({s.q_index, s.multiplier, s.offset});
     }
+  }
+  for (Step& s : steps_) {
+    const int axis = s.motion == Motion::kRotX   ? 0
+                     : s.motion == Motion::kRotY ? 1
+                     : s.motion == Motion::kRotZ ? 2
+                                                 : -1;
+    s.perm_rotation = s.perm && s.num_shifts == 0 && axis >= 0 ? 3 * s.perm_code + axis : -1;
+  }
+  trig_first_ = trig_args_.empty() ? 0 : trig_args_.front().q_index;
+  trig_run_ = trig_args_.size() <= std::size_t(kTrigBlock);
+  for (std::size_t t = 0; t < trig_args_.size(); ++t) {
+    const TrigArg& a = trig_args_[t];
+    trig_run_ = trig_run_ && a.q_index == trig_first_ + int(t) && a.multiplier == 1.0 &&
+                a.offset == 0.0;
   }
 }
 
@@ -349,8 +367,17 @@ __attribute__((always_inline)) inline PairColumn loadColumn<PairColumn>(const do
   return {loadPair(p), loadPair(p + 2)};
 }
 // The fourth element (w) of a column.
-__attribute__((always_inline)) inline void setLast(Quad& v, double w) { v[3] = w; }
-__attribute__((always_inline)) inline void setLast(PairColumn& v, double w) { v.hi[1] = w; }
+// (A mask or a blend with a constant: assigning the element alone takes an extract and an
+// insert, and a shuffle with {0, 0, 0, w} a permutation too.)
+__attribute__((always_inline)) inline void setLast(Quad& v, double w) {
+  if (w == 0.0)
+    v = (Quad)((QuadBits)v & QuadBits{-1, -1, -1, 0});
+  else
+    v = __builtin_shuffle(v, Quad{w, w, w, w}, QuadBits{0, 1, 2, 7});
+}
+__attribute__((always_inline)) inline void setLast(PairColumn& v, double w) {
+  v.hi = __builtin_shuffle(v.hi, Pair{0.0, w}, PairBits{0, 3});
+}
 __attribute__((always_inline)) inline void setLast(ScalarQuad& v, double w) { v.v[3] = w; }
 template <class Column>
 __attribute__((always_inline)) inline void storeColumn(double* p, Column v) {
@@ -362,6 +389,18 @@ __attribute__((always_inline)) inline void storeColumn<PairColumn>(double* p, Pa
   storePair(p + 2, v.hi);
 }
 
+// Columns P0, P1, P2 of a times the signs, then the rotation about axis kAxis: the same
+// products and sums as the general step (a permutation, then rotate()).
+template <int P0, int P1, int P2, int kAxis, class Column>
+__attribute__((always_inline)) inline void permRotate(const Column* a, const double* sign,
+                                                      double sv, double cv, Column* c) {
+  c[0] = a[P0] * sign[0], c[1] = a[P1] * sign[1], c[2] = a[P2] * sign[2];
+  constexpr int ca = (kAxis + 1) % 3, cb = (kAxis + 2) % 3;
+  const Column x = c[ca], y = c[cb];
+  c[ca] = cv * x + sv * y;
+  c[cb] = cv * y - sv * x;
+}
+
 }  // namespace
 
 template <class Column>
@@ -369,9 +408,8 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
                                                            Eigen::Isometry3d* X_WL) const {
   // The sines and cosines of the axis-aligned revolute joints first, all together (see
   // fastSinCosArray), in blocks of kTrigBlock.
-  constexpr int kTrigBlock = 32;
   double v[kTrigBlock], sn[kTrigBlock], cs[kTrigBlock];
-  const int num_trig = static_cast<int>(trig_steps_.size());
+  const int num_trig = static_cast<int>(trig_args_.size());
   X_WL[root_] = X_WR_;
   int block_begin = 0, block_end = 0;
   // A pose as 4 columns of the column-major 4x4 matrix. The pose of the previous step stays in
@@ -383,15 +421,21 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
   // the compiler reload them every step.
   const Step* const steps = steps_.data();
   const std::size_t num_steps = steps_.size();
-  const int* const trig_steps = trig_steps_.data();
+  const TrigArg* const trig_args = trig_args_.data();
   for (std::size_t i = 0; i < num_steps; ++i) {
     const Step& s = steps[i];
     if (s.trig >= block_end) {
       block_begin = block_end;
       const int n = std::min(kTrigBlock, num_trig - block_begin);
-      for (int t = 0; t < n; ++t) {
-        const Step& st = steps[trig_steps[block_begin + t]];
-        v[t] = st.multiplier * q[st.q_index] + st.offset;
+      if (trig_run_) {
+        // 1 * x + 0 is x + 0 (the sign of a zero as the general formula gives it).
+        const double* const qt = q + trig_first_;
+        for (int t = 0; t < n; ++t) v[t] = qt[t] + 0.0;
+      } else {
+        for (int t = 0; t < n; ++t) {
+          const TrigArg& ta = trig_args[block_begin + t];
+          v[t] = ta.multiplier * q[ta.q_index] + ta.offset;
+        }
       }
       for (int t = n; t < kTrigBlock && t % 4 != 0; ++t) v[t] = 0.0;  // whole lanes
       if (std::is_same<Column, Quad>::value)
@@ -401,11 +445,45 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
       block_end = block_begin + n;
     }
     Column a[4];
-    const double* const A_ref = (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data();
+    auto refPose = [&] { return (s.ref < 0 ? X_WR_ : X_WL[s.ref]).matrix().data(); };
     if (s.ref == prev_link) {
       std::copy(c, c + 4, a);
     } else {
+      const double* const A_ref = refPose();
       for (int k = 0; k < 4; ++k) a[k] = loadColumn<Column>(A_ref + 4 * k);
+    }
+    if (s.perm_rotation >= 0 && !std::is_same<Column, ScalarQuad>::value) {
+      // The usual step of an arm (a joint origin turned by multiples of pi/2, a revolute
+      // joint about one of its axes) in one switch, each case with constant columns; the
+      // translation first, from a.
+      c[3] = ((a[3] + a[0] * s.m[3][0]) + a[1] * s.m[3][1]) + a[2] * s.m[3][2];
+      const double sv = sn[s.trig - block_begin], cv = cs[s.trig - block_begin];
+      switch (s.perm_rotation) {
+#define DSS_PERM_ROTATION(code, P0, P1, P2)               \
+  case 3 * code:                                          \
+    permRotate<P0, P1, P2, 0>(a, s.sign, sv, cv, c);      \
+    break;                                                \
+  case 3 * code + 1:                                      \
+    permRotate<P0, P1, P2, 1>(a, s.sign, sv, cv, c);      \
+    break;                                                \
+  case 3 * code + 2:                                      \
+    permRotate<P0, P1, P2, 2>(a, s.sign, sv, cv, c);      \
+    break;
+        DSS_PERM_ROTATION(0, 0, 1, 2)
+        DSS_PERM_ROTATION(1, 0, 2, 1)
+        DSS_PERM_ROTATION(2, 1, 0, 2)
+        DSS_PERM_ROTATION(3, 1, 2, 0)
+        DSS_PERM_ROTATION(4, 2, 0, 1)
+        DSS_PERM_ROTATION(5, 2, 1, 0)
+#undef DSS_PERM_ROTATION
+      }
+      double* X = X_WL[s.link].matrix().data();
+      for (int k = 0; k < 4; ++k) {
+        setLast(c[k], k == 3 ? 1.0 : 0.0);
+        storeColumn(X + 4 * k, c[k]);
+      }
+      prev_link = s.link;
+      continue;
     }
     // [c | p] = [a | at] [R_c | p_c]; the sums in the order a0 * m0 + a1 * m1 + a2 * m2 (+ at
     // first for p). A signed permutation selects columns: for finite poses sign * column is
@@ -418,6 +496,7 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
     } else if (s.perm && std::is_same<Column, ScalarQuad>::value) {
       // The scalar path reads the columns back from memory (its columns live there anyway; a
       // switch of struct copies costs it a fifth of its time).
+      const double* const A_ref = refPose();
       for (int j = 0; j < 3; ++j) c[j] = loadColumn<Column>(A_ref + 4 * s.col[j]) * s.sign[j];
     } else if (s.perm) {
       // The columns picked from registers, each permutation with constant indices.

@@ -77,7 +77,7 @@ class Kinematics {
     int link;
     int ref;            // computed link whose pose this one starts from; -1: the base pose
     int q_index;        // active joint index read
-    int trig;           // kRotX/Y/Z: index into trig_steps_; else -1
+    int trig;           // kRotX/Y/Z: index into trig_args_; else -1
     double multiplier;  // sign of an axis-aligned axis, times the mimic multiplier
     double offset;      // mimic offset times the same sign
     bool identity_R;    // R_c is exactly the identity: only the translation applies
@@ -99,6 +99,9 @@ class Kinematics {
     };
     int num_shifts = 0;
     Shift shifts[3];
+    /// A signed permutation (or the identity) then a rotation about axis x, y or z, and nothing
+    /// else: 3 * perm_code + axis, the case of run()'s combined switch; -1 otherwise.
+    int perm_rotation = -1;
   };
 
   static void setConstantFrame(Step* s, const Eigen::Isometry3d& X);
@@ -116,7 +119,18 @@ class Kinematics {
   void foldTranslations(const std::vector<char>& wanted);
 
   std::vector<Step> steps_;
-  std::vector<int> trig_steps_;  // steps with an axis-aligned rotation, in order
+  /// The angle of each step with an axis-aligned rotation, in order: multiplier * q[q_index] +
+  /// offset, read together before the steps (contiguous, not through the steps).
+  static constexpr int kTrigBlock = 32;  ///< angles evaluated together (see run)
+  struct TrigArg {
+    int q_index;
+    double multiplier, offset;
+  };
+  std::vector<TrigArg> trig_args_;
+  /// Every angle is q[trig_first_ + t] itself (multiplier 1, offset 0), at most kTrigBlock of
+  /// them: the angles are read as one run of q.
+  bool trig_run_ = false;
+  int trig_first_ = 0;
   std::vector<int> updated_;
   struct JointRef {  // copied, so that a Kinematics does not point into its model
     int active_index;
