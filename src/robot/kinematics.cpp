@@ -293,8 +293,8 @@ void Kinematics::foldTranslations(const std::vector<char>& wanted) {
   trig_run_ = trig_args_.size() <= std::size_t(kTrigBlock);
   for (std::size_t t = 0; t < trig_args_.size(); ++t) {
     const TrigArg& a = trig_args_[t];
-    trig_run_ = trig_run_ && a.q_index == trig_first_ + int(t) && a.multiplier == 1.0 &&
-                a.offset == 0.0;
+    trig_run_ =
+        trig_run_ && a.q_index == trig_first_ + int(t) && a.multiplier == 1.0 && a.offset == 0.0;
   }
 }
 
@@ -459,15 +459,15 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
       c[3] = ((a[3] + a[0] * s.m[3][0]) + a[1] * s.m[3][1]) + a[2] * s.m[3][2];
       const double sv = sn[s.trig - block_begin], cv = cs[s.trig - block_begin];
       switch (s.perm_rotation) {
-#define DSS_PERM_ROTATION(code, P0, P1, P2)               \
-  case 3 * code:                                          \
-    permRotate<P0, P1, P2, 0>(a, s.sign, sv, cv, c);      \
-    break;                                                \
-  case 3 * code + 1:                                      \
-    permRotate<P0, P1, P2, 1>(a, s.sign, sv, cv, c);      \
-    break;                                                \
-  case 3 * code + 2:                                      \
-    permRotate<P0, P1, P2, 2>(a, s.sign, sv, cv, c);      \
+#define DSS_PERM_ROTATION(code, P0, P1, P2)          \
+  case 3 * code:                                     \
+    permRotate<P0, P1, P2, 0>(a, s.sign, sv, cv, c); \
+    break;                                           \
+  case 3 * code + 1:                                 \
+    permRotate<P0, P1, P2, 1>(a, s.sign, sv, cv, c); \
+    break;                                           \
+  case 3 * code + 2:                                 \
+    permRotate<P0, P1, P2, 2>(a, s.sign, sv, cv, c); \
     break;
         DSS_PERM_ROTATION(0, 0, 1, 2)
         DSS_PERM_ROTATION(1, 0, 2, 1)
