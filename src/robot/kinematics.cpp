@@ -367,16 +367,12 @@ __attribute__((always_inline)) inline PairColumn loadColumn<PairColumn>(const do
   return {loadPair(p), loadPair(p + 2)};
 }
 // The fourth element (w) of a column.
-// (A mask or a blend with a constant: assigning the element alone takes an extract and an
-// insert, and a shuffle with {0, 0, 0, w} a permutation too.)
+// (Masks with constants: assigning the element alone takes an extract and an insert.)
 __attribute__((always_inline)) inline void setLast(Quad& v, double w) {
-  if (w == 0.0)
-    v = (Quad)((QuadBits)v & QuadBits{-1, -1, -1, 0});
-  else
-    v = __builtin_shuffle(v, Quad{w, w, w, w}, QuadBits{0, 1, 2, 7});
+  v = (Quad)(((QuadBits)v & QuadBits{-1, -1, -1, 0}) | (QuadBits)Quad{0.0, 0.0, 0.0, w});
 }
 __attribute__((always_inline)) inline void setLast(PairColumn& v, double w) {
-  v.hi = __builtin_shuffle(v.hi, Pair{0.0, w}, PairBits{0, 3});
+  v.hi = (Pair)(((PairBits)v.hi & PairBits{-1, 0}) | (PairBits)Pair{0.0, w});
 }
 __attribute__((always_inline)) inline void setLast(ScalarQuad& v, double w) { v.v[3] = w; }
 template <class Column>
