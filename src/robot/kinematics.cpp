@@ -276,17 +276,12 @@ void Kinematics::foldTranslations(const std::vector<char>& wanted) {
   }
   trig_args_.clear();
   for (Step& s : steps_) {
-    s.trig = -1;
-    if (s.motion == Motion::kRotX || s.motion == Motion::kRotY || s.motion == Motion::kRotZ) {
-      s.trig = static_cast<int>(trig_args_.size());
-      trig_args_.push_back({s.q_index, s.multiplier, s.offset});
-    }
-  }
-  for (Step& s : steps_) {
     const int axis = s.motion == Motion::kRotX   ? 0
                      : s.motion == Motion::kRotY ? 1
                      : s.motion == Motion::kRotZ ? 2
                                                  : -1;
+    s.trig = axis >= 0 ? static_cast<int>(trig_args_.size()) : -1;
+    if (axis >= 0) trig_args_.push_back({s.q_index, s.multiplier, s.offset});
     s.perm_rotation = s.perm && s.num_shifts == 0 && axis >= 0 ? 3 * s.perm_code + axis : -1;
   }
   trig_first_ = trig_args_.empty() ? 0 : trig_args_.front().q_index;
@@ -448,6 +443,17 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
       const double* const A_ref = refPose();
       for (int k = 0; k < 4; ++k) a[k] = loadColumn<Column>(A_ref + 4 * k);
     }
+    // The pose c of s.link stored. The bottom row is written exactly (0 0 0 1), whatever the
+    // products gave it: set in the columns before they are stored (a separate store into a
+    // column just stored would make a later load of the whole column wait for both).
+    auto storePose = [&] {
+      double* X = X_WL[s.link].matrix().data();
+      for (int k = 0; k < 4; ++k) {
+        setLast(c[k], k == 3 ? 1.0 : 0.0);
+        storeColumn(X + 4 * k, c[k]);
+      }
+      prev_link = s.link;
+    };
     if (s.perm_rotation >= 0 && !std::is_same<Column, ScalarQuad>::value) {
       // The usual step of an arm (a joint origin turned by multiples of pi/2, a revolute
       // joint about one of its axes) in one switch, each case with constant columns; the
@@ -473,12 +479,7 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
         DSS_PERM_ROTATION(5, 2, 1, 0)
 #undef DSS_PERM_ROTATION
       }
-      double* X = X_WL[s.link].matrix().data();
-      for (int k = 0; k < 4; ++k) {
-        setLast(c[k], k == 3 ? 1.0 : 0.0);
-        storeColumn(X + 4 * k, c[k]);
-      }
-      prev_link = s.link;
+      storePose();
       continue;
     }
     // [c | p] = [a | at] [R_c | p_c]; the sums in the order a0 * m0 + a1 * m1 + a2 * m2 (+ at
@@ -604,15 +605,7 @@ __attribute__((always_inline)) inline void Kinematics::run(const double* q,
         break;
       }
     }
-    // The bottom row is written exactly (0 0 0 1), whatever the products gave it: set in the
-    // columns before they are stored (a separate store into a column just stored would make a
-    // later load of the whole column wait for both).
-    double* X = X_WL[s.link].matrix().data();
-    for (int k = 0; k < 4; ++k) {
-      setLast(c[k], k == 3 ? 1.0 : 0.0);
-      storeColumn(X + 4 * k, c[k]);
-    }
-    prev_link = s.link;
+    storePose();
   }
 }
 
