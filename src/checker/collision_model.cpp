@@ -90,6 +90,12 @@ CollisionModel::CollisionModel(std::shared_ptr<const RobotModel> robot, const Sr
   base_table_ = BaseSceneTable(*this, options.base_table_cells, options.base_table_padding);
   for (std::size_t i = 0; i < base_table_.slots().size(); ++i)
     slots_[std::size_t(base_table_.slots()[i])].base_bit = std::uint8_t(1u << i);
+  std::vector<SlotSpheres::Sphere> own, folded;
+  for (const Slot& s : slots_) {
+    own.push_back({s.link, s.center_L, s.radius, !s.obstacles.empty()});
+    folded.push_back({s.pose_link, s.center_P, s.radius, !s.obstacles.empty()});
+  }
+  slot_spheres_ = SlotSpheres(own, folded);
 }
 
 RobotModel CollisionModel::foldedRobot() const {

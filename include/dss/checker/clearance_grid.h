@@ -106,6 +106,7 @@ class ClearanceGrid {
   const Eigen::Vector3d& origin() const { return origin_; }
 
  private:
+  friend class SlotSpheresGrid;  // the same lookups, many spheres per pass (slot_spheres.h)
   /// f truncated to int; INT_MIN for NaN and for values out of the int range.
   static int toIndex(double f) {
 #if defined(__SSE2__)

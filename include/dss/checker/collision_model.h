@@ -35,6 +35,7 @@
 #include "dss/checker/obb.h"
 #include "dss/checker/pair_blocks.h"
 #include "dss/checker/self_pair_table.h"
+#include "dss/checker/slot_spheres.h"
 #include "dss/checker/sphere_box_filter.h"
 #include "dss/robot/collision_pairs.h"
 #include "dss/robot/kinematics.h"
@@ -190,6 +191,8 @@ class CollisionModel {
   /// Lower bounds on the distance to the obstacle boxes over the region the moving links
   /// reach: the first test of the sweep for each link sphere.
   const ClearanceGrid& clearanceGrid() const { return grid_; }
+  /// The slots' spheres (slot k's is sphere k), for the sweep's first pass.
+  const SlotSpheres& slotSpheres() const { return slot_spheres_; }
 
   std::size_t obstaclesBefore() const { return obstacles_before_; }
   /// A lower bound on the distance of any moving link to any obstacle pruned for it
@@ -249,6 +252,7 @@ class CollisionModel {
   std::vector<Obb> obbs_;
   std::vector<Eigen::Vector3d> inner_half_;
   ClearanceGrid grid_;
+  SlotSpheres slot_spheres_;
   SelfCollisionPairs self_report_;
   std::size_t obstacles_before_ = 0;
   double pruned_gap_ = std::numeric_limits<double>::infinity();

@@ -3,15 +3,15 @@
 // stops at the first collision.
 //
 // Robot vs scene, per moving slot: the clearance grid (one lookup proves the slot's sphere
-// clear of every obstacle); the obstacles the sphere reaches (the grid's candidate lists, or
-// the sphere-box filter, two obstacle boxes at a time); each element's sphere against the box
-// (slots of several elements); the ball stage (a sphere obstacle or a sphere element against a
-// primitive: ball_stage.h), the oriented-box stage, the inner stage (a box or a ball
-// inside the element within the padding of a box inside the obstacle proves a collision), the
-// narrow phase. Self pairs, block by block: a block's ball (pair_blocks.h), the pair's table flag
-// (self_pair_table.h), the slots' spheres, the elements' spheres, the oriented-box stage, the
-// narrow phase. Every stage is conservative: it skips a pair only when the pair is proved
-// apart (beyond the padding) and reports a collision only when one is proved.
+// clear of every obstacle; all slots in one pass, slot_spheres.h); the obstacles the sphere reaches
+// (the grid's candidate lists, or the sphere-box filter, two obstacle boxes at a time); each
+// element's sphere against the box (slots of several elements); the ball stage (a sphere obstacle
+// or a sphere element against a primitive: ball_stage.h), the oriented-box stage, the inner stage
+// (a box or a ball inside the element within the padding of a box inside the obstacle proves a
+// collision), the narrow phase. Self pairs, block by block: a block's ball (pair_blocks.h), the
+// pair's table flag (self_pair_table.h), the slots' spheres, the elements' spheres, the
+// oriented-box stage, the narrow phase. Every stage is conservative: it skips a pair only when the
+// pair is proved apart (beyond the padding) and reports a collision only when one is proved.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -24,6 +24,7 @@
 #include "dss/checker/collision_model.h"
 #include "dss/checker/inner_shapes.h"
 #include "dss/checker/obb.h"
+#include "dss/checker/slot_spheres.h"
 
 namespace dss {
 
@@ -96,9 +97,6 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   using Element = CollisionModel::Element;
   constexpr bool kFolded = kPoses == SweepPoses::kPoseLinks;
   auto linkOf = [](const Slot& s) { return kFolded ? s.pose_link : s.link; };
-  auto slotCenter = [](const Slot& s) -> const Eigen::Vector3d& {
-    return kFolded ? s.center_P : s.center_L;
-  };
   auto elementCenter = [](const Element& e) -> const Eigen::Vector3d& {
     return kFolded ? e.center_P : e.center_L;
   };
@@ -108,156 +106,165 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   const std::vector<Obb>& obbs = model.obstacleObbs();
   const std::vector<Obstacle>& obstacles = model.scene().obstacles;
   const ClearanceGrid& grid = model.clearanceGrid();
-  // World centres of the slot spheres, each computed as the robot-scene loop reaches its slot
-  // (a collision found there leaves the rest uncomputed); the self pairs use them all
-  // (per-thread scratch, no allocation after the first call with a model this size). The
-  // vector and the slot count are read once: inside the loops the compiler would reload both
-  // after every store.
+  // World centres of the slot spheres and the grid's verdicts, all slots in one pass before
+  // any stage (slot_spheres.h); the self pairs use the centres too (per-thread scratch, no
+  // allocation after the first call with a model this size). The scratch vectors are read
+  // once: inside the loops the compiler would reload them after every store.
   thread_local std::vector<Eigen::Vector3d> center_store, element_store;
-  const std::size_t num_slots = model.slots().size();
-  if (center_store.size() < num_slots) center_store.resize(num_slots);
+  thread_local std::vector<std::uint64_t> clear_store;
+  const SlotSpheres& spheres = model.slotSpheres();
+  const std::size_t words = spheres.words();
+  if (center_store.size() < spheres.centersWritten()) center_store.resize(spheres.centersWritten());
+  if (clear_store.size() < words) clear_store.resize(words);
   Eigen::Vector3d* const centers = center_store.data();
+  std::uint64_t* const clear = clear_store.data();
+  spheres.place(kFolded, X_WL, grid, scene_padding, centers, clear);
+  const std::uint64_t* const tested = spheres.scene();
   const Slot* const slots = model.slots().data();
   using ChainPoint = CollisionModel::ChainPoint;
   const ChainPoint* const chain = model.chainPoints().data();
-  // Robot vs scene.
-  for (std::size_t k = 0; k < num_slots; ++k) {
-    const Slot& s = slots[k];
-    const Eigen::Isometry3d& X = X_WL[linkOf(s)];
-    centers[k] = X.linear() * slotCenter(s) + X.translation();
-    const std::size_t nb = s.obstacles.size();
-    if (nb == 0 || (s.base_bit & opt.base_free)) continue;
-    const Eigen::Vector3d& c = centers[k];
-    const double r = s.radius + scene_padding;
-    if (grid.clear(c, r)) continue;
-    // The chains of balls along the elements (sphere_chain.h): an element whose outer balls
-    // the grid clears is clear; an inner ball within the padding of an obstacle (the grid's
-    // upper bound, for narrow phases that see the elements' own shapes) is a collision.
-    std::uint64_t open = ~std::uint64_t(0);  // the elements left to test, one bit each
-    if (s.num_chain > 0) {
-      open = 0;
-      const double deep_padding =
-          opt.inner_shapes ? scene_padding : -std::numeric_limits<double>::infinity();
-      const ClearanceGrid::Frame frame = grid.frame(X);
-      const ChainPoint* const first = chain + s.first_chain;
-      for (const ChainPoint* p = first; p != first + s.num_chain; ++p) {
-        const std::uint16_t v = grid.cell(frame, kFolded ? p->c_P : p->c_L);
-        // The farthest points first: a collision found there ends the state.
-        const double lower = (v & 0xff) * ClearanceGrid::kQuantum;
-        const double upper = (v >> 8) * ClearanceGrid::kQuantum;
-        if (((v >> 8) != ClearanceGrid::kUnknown) & (upper <= p->inner + deep_padding)) return true;
-        open |= std::uint64_t(!(lower > p->outer + scene_padding)) << p->element;
+  // Robot vs scene: the slots checked against the scene that the grid does not clear.
+  for (std::size_t w = 0; w < words; ++w)
+    for (std::uint64_t open_slots = tested[w] & ~clear[w]; open_slots;
+         open_slots &= open_slots - 1) {
+      const std::size_t k = w * 64 + static_cast<std::size_t>(__builtin_ctzll(open_slots));
+      const Slot& s = slots[k];
+      if (s.base_bit & opt.base_free) continue;
+      const Eigen::Isometry3d& X = X_WL[linkOf(s)];
+      const std::size_t nb = s.obstacles.size();
+      const Eigen::Vector3d& c = centers[k];
+      const double r = s.radius + scene_padding;
+      // The chains of balls along the elements (sphere_chain.h): an element whose outer balls
+      // the grid clears is clear; an inner ball within the padding of an obstacle (the grid's
+      // upper bound, for narrow phases that see the elements' own shapes) is a collision.
+      std::uint64_t open = ~std::uint64_t(0);  // the elements left to test, one bit each
+      if (s.num_chain > 0) {
+        open = 0;
+        const double deep_padding =
+            opt.inner_shapes ? scene_padding : -std::numeric_limits<double>::infinity();
+        const ClearanceGrid::Frame frame = grid.frame(X);
+        const ChainPoint* const first = chain + s.first_chain;
+        for (const ChainPoint* p = first; p != first + s.num_chain; ++p) {
+          const std::uint16_t v = grid.cell(frame, kFolded ? p->c_P : p->c_L);
+          // The farthest points first: a collision found there ends the state.
+          const double lower = (v & 0xff) * ClearanceGrid::kQuantum;
+          const double upper = (v >> 8) * ClearanceGrid::kQuantum;
+          if (((v >> 8) != ClearanceGrid::kUnknown) & (upper <= p->inner + deep_padding))
+            return true;
+          open |= std::uint64_t(!(lower > p->outer + scene_padding)) << p->element;
+        }
+        if (!open) continue;
       }
-      if (!open) continue;
-    }
-    // Element e against obstacle o, whose box the element's sphere reaches: the stages.
-    auto pair = [&](int e, int o) {
-      const Element& el = elements[e];
-      Eigen::Isometry3d X_prod;
-      const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
-      const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: no box inside it
-      const bool inner =
-          opt.inner_shapes && (el.has_inner_box || el.num_inner > 0) && half.x() >= 0.0;
-      if (opt.obb_stage) {
-        // The ball stage: a sphere obstacle against the element, or a sphere element against
-        // the obstacle, decided by a distance in closed form where the other is a primitive.
-        BoxStage v = BoxStage::kUnknown;
-        if (const Obb& ob = obbs[o]; ob.ball)
-          v = ballStage(el.source->shape, X_WS, ob.c, ob.h.x(), scene_padding);
-        else if (el.ball_radius >= 0.0)
-          v = ballStage(obstacles[o].shape, obstacles[o].X_WO, X_WS.translation(), el.ball_radius,
-                        scene_padding);
-        if (v == BoxStage::kApart) return false;
-        if (v == BoxStage::kTouch && opt.inner_shapes) return true;
-      }
-      bool box_tested = false;  // the inner box, with the oriented boxes (boxStages)
-      if (opt.obb_stage) {
-        const Obb& ob = obbs[o];
-        const Eigen::Vector3d box_c = X_WS * el.box_center_S;
-        if (inner && el.has_inner_box) {
-          const BoxStage v =
-              ob.axis_aligned
-                  ? boxStagesAxisAligned(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.c,
-                                         ob.h, half, scene_padding)
-                  : boxStages(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.R, ob.c, ob.h,
-                              half, scene_padding);
+      // Element e against obstacle o, whose box the element's sphere reaches: the stages.
+      auto pair = [&](int e, int o) {
+        const Element& el = elements[e];
+        Eigen::Isometry3d X_prod;
+        const Eigen::Isometry3d& X_WS = detail::placedShape<kPoses>(X, el, X_prod);
+        const Eigen::Vector3d& half = model.obstacleBoxHalf(o);  // x < 0: no box inside it
+        const bool inner =
+            opt.inner_shapes && (el.has_inner_box || el.num_inner > 0) && half.x() >= 0.0;
+        if (opt.obb_stage) {
+          // The ball stage: a sphere obstacle against the element, or a sphere element against
+          // the obstacle, decided by a distance in closed form where the other is a primitive.
+          BoxStage v = BoxStage::kUnknown;
+          if (const Obb& ob = obbs[o]; ob.ball)
+            v = ballStage(el.source->shape, X_WS, ob.c, ob.h.x(), scene_padding);
+          else if (el.ball_radius >= 0.0)
+            v = ballStage(obstacles[o].shape, obstacles[o].X_WO, X_WS.translation(), el.ball_radius,
+                          scene_padding);
           if (v == BoxStage::kApart) return false;
-          if (v == BoxStage::kTouch) return true;
-          box_tested = true;
-        } else if (ob.axis_aligned ? obbApartAxisAligned(X_WS.linear(), box_c, el.box_half, ob.c,
-                                                         ob.h, scene_padding)
-                                   : obbApart(X_WS.linear(), box_c, el.box_half, ob.R, ob.c, ob.h,
-                                              scene_padding)) {
+          if (v == BoxStage::kTouch && opt.inner_shapes) return true;
+        }
+        bool box_tested = false;  // the inner box, with the oriented boxes (boxStages)
+        if (opt.obb_stage) {
+          const Obb& ob = obbs[o];
+          const Eigen::Vector3d box_c = X_WS * el.box_center_S;
+          if (inner && el.has_inner_box) {
+            const BoxStage v =
+                ob.axis_aligned
+                    ? boxStagesAxisAligned(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.c,
+                                           ob.h, half, scene_padding)
+                    : boxStages(X_WS.linear(), box_c, el.box_half, el.inner_box_h, ob.R, ob.c, ob.h,
+                                half, scene_padding);
+            if (v == BoxStage::kApart) return false;
+            if (v == BoxStage::kTouch) return true;
+            box_tested = true;
+          } else if (ob.axis_aligned ? obbApartAxisAligned(X_WS.linear(), box_c, el.box_half, ob.c,
+                                                           ob.h, scene_padding)
+                                     : obbApart(X_WS.linear(), box_c, el.box_half, ob.R, ob.c, ob.h,
+                                                scene_padding)) {
+            return false;
+          }
+        }
+        if (inner) {
+          const Obb& ob = obbs[o];
+          if (el.has_inner_box && !box_tested &&
+              boxesTouch(X_WS.linear(), X_WS * el.inner_box_c, el.inner_box_h, ob.R, ob.c, half,
+                         scene_padding))
+            return true;
+          for (int b = 0; b < el.num_inner; ++b)
+            if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half,
+                               scene_padding))
+              return true;
+        }
+        return scene(e, X_WS, o);
+      };
+      // Whether the sphere (cc, rr), which reaches obstacle o's world box, also reaches its
+      // oriented box: a turned obstacle (a wall at an angle) fills little of its world box; a
+      // sphere obstacle only its own ball (with a relative margin against rounding).
+      auto reachesObb = [&](const Eigen::Vector3d& cc, double rr, int o) {
+        const Obb& ob = obbs[o];
+        if (ob.ball) {
+          const double reach = (rr + ob.h.x()) * (1.0 + 1e-12) + 1e-300;
+          return !((cc - ob.c).squaredNorm() > reach * reach);
+        }
+        return ob.axis_aligned || !ballApartObb(cc, rr, ob);
+      };
+      // The obstacles whose boxes the sphere (cc, rr) reaches, each through `visit` (true: a
+      // collision): the grid's candidates for the sphere's voxel (obstacles it can reach from
+      // there), else every obstacle of the slot, two boxes at a time.
+      auto reached = [&](const Eigen::Vector3d& cc, double rr, auto&& visit) {
+        if (const std::uint64_t* cand =
+                s.obstacle_bits.empty() ? nullptr : grid.candidates(cc, rr)) {
+          const std::size_t words = s.obstacle_bits.size();
+          for (std::size_t w = 0; w < words; ++w)
+            for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
+              const int o =
+                  static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
+              if (detail::sqDistPointAabb(cc, boxes[o]) > rr * rr || !reachesObb(cc, rr, o))
+                continue;
+              if (visit(o)) return true;
+            }
           return false;
         }
-      }
-      if (inner) {
-        const Obb& ob = obbs[o];
-        if (el.has_inner_box && !box_tested &&
-            boxesTouch(X_WS.linear(), X_WS * el.inner_box_c, el.inner_box_h, ob.R, ob.c, half,
-                       scene_padding))
-          return true;
-        for (int b = 0; b < el.num_inner; ++b)
-          if (ballTouchesBox(X_WS * el.inner_S[b].head<3>(), el.inner_S[b].w(), ob.R, ob.c, half,
-                             scene_padding))
-            return true;
-      }
-      return scene(e, X_WS, o);
-    };
-    // Whether the sphere (cc, rr), which reaches obstacle o's world box, also reaches its
-    // oriented box: a turned obstacle (a wall at an angle) fills little of its world box; a
-    // sphere obstacle only its own ball (with a relative margin against rounding).
-    auto reachesObb = [&](const Eigen::Vector3d& cc, double rr, int o) {
-      const Obb& ob = obbs[o];
-      if (ob.ball) {
-        const double reach = (rr + ob.h.x()) * (1.0 + 1e-12) + 1e-300;
-        return !((cc - ob.c).squaredNorm() > reach * reach);
-      }
-      return ob.axis_aligned || !ballApartObb(cc, rr, ob);
-    };
-    // The obstacles whose boxes the sphere (cc, rr) reaches, each through `visit` (true: a
-    // collision): the grid's candidates for the sphere's voxel (obstacles it can reach from
-    // there), else every obstacle of the slot, two boxes at a time.
-    auto reached = [&](const Eigen::Vector3d& cc, double rr, auto&& visit) {
-      if (const std::uint64_t* cand = s.obstacle_bits.empty() ? nullptr : grid.candidates(cc, rr)) {
-        const std::size_t words = s.obstacle_bits.size();
-        for (std::size_t w = 0; w < words; ++w)
-          for (std::uint64_t bits = cand[w] & s.obstacle_bits[w]; bits; bits &= bits - 1) {
-            const int o =
-                static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
-            if (detail::sqDistPointAabb(cc, boxes[o]) > rr * rr || !reachesObb(cc, rr, o)) continue;
-            if (visit(o)) return true;
+        for (std::size_t begin = 0; begin < nb; begin += 64) {
+          const std::size_t n = std::min<std::size_t>(64, nb - begin);
+          for (std::uint64_t hits = s.boxes.hits(begin, n, cc, rr * rr); hits; hits &= hits - 1) {
+            const int o = s.obstacles[begin + static_cast<std::size_t>(__builtin_ctzll(hits))];
+            if (reachesObb(cc, rr, o) && visit(o)) return true;
           }
-        return false;
-      }
-      for (std::size_t begin = 0; begin < nb; begin += 64) {
-        const std::size_t n = std::min<std::size_t>(64, nb - begin);
-        for (std::uint64_t hits = s.boxes.hits(begin, n, cc, rr * rr); hits; hits &= hits - 1) {
-          const int o = s.obstacles[begin + static_cast<std::size_t>(__builtin_ctzll(hits))];
-          if (reachesObb(cc, rr, o) && visit(o)) return true;
         }
+        return false;
+      };
+      if (s.num_elements == 1) {
+        const int e = s.first_element;
+        if (reached(c, r, [&](int o) { return pair(e, o); })) return true;
+        continue;
       }
-      return false;
-    };
-    if (s.num_elements == 1) {
-      const int e = s.first_element;
-      if (reached(c, r, [&](int o) { return pair(e, o); })) return true;
-      continue;
+      // Several elements (a base with its bumper, deck and wheels): the obstacles the slot's
+      // sphere reaches, each against the elements whose own spheres reach its box.
+      const auto element = [&](int o) {
+        for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+          if (!((open >> (e - s.first_element)) & 1)) continue;
+          const double re = elements[e].radius + scene_padding;
+          const Eigen::Vector3d ce = X * elementCenter(elements[e]);
+          if (detail::sqDistPointAabb(ce, boxes[o]) > re * re || !reachesObb(ce, re, o)) continue;
+          if (pair(e, o)) return true;
+        }
+        return false;
+      };
+      if (reached(c, r, element)) return true;
     }
-    // Several elements (a base with its bumper, deck and wheels): the obstacles the slot's
-    // sphere reaches, each against the elements whose own spheres reach its box.
-    const auto element = [&](int o) {
-      for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
-        if (!((open >> (e - s.first_element)) & 1)) continue;
-        const double re = elements[e].radius + scene_padding;
-        const Eigen::Vector3d ce = X * elementCenter(elements[e]);
-        if (detail::sqDistPointAabb(ce, boxes[o]) > re * re || !reachesObb(ce, re, o)) continue;
-        if (pair(e, o)) return true;
-      }
-      return false;
-    };
-    if (reached(c, r, element)) return true;
-  }
   // Self pairs, block by block.
   const CollisionModel::SelfPair* const pairs = model.selfPairs().data();
   for (const PairBlock& blk : model.pairBlocks()) {
