@@ -20,7 +20,7 @@ namespace {
 // two SSE2 registers otherwise (element by element either way).
 using Quad = double __attribute__((vector_size(32)));
 
-// The grid's lookup, read once per pass (into registers: each path builds its own).
+// The grid's lookup, read once per four-lane pass (into registers).
 struct GridView {
   double below[3];
   double inv_size;
@@ -31,7 +31,7 @@ struct GridView {
 
 }  // namespace
 
-// ClearanceGrid::clear for a centre already in voxel coordinates u = (c - below) / size.
+// The grid's fields, for the four-lane lookups (the one-sphere paths call ClearanceGrid::clear).
 class SlotSpheresGrid {
  public:
   static GridView view(const ClearanceGrid& g) {
@@ -43,13 +43,6 @@ class SlotSpheresGrid {
     v.stride_z = g.stride_z_;
     v.bound = g.bound_.data();
     return v;
-  }
-  static bool clear(const GridView& g, double ux, double uy, double uz, double r) {
-    const unsigned x = static_cast<unsigned>(ClearanceGrid::toIndex(ux)) - 1u,
-                   y = static_cast<unsigned>(ClearanceGrid::toIndex(uy)) - 1u,
-                   z = static_cast<unsigned>(ClearanceGrid::toIndex(uz)) - 1u;
-    if (!((x < g.count[0]) & (y < g.count[1]) & (z < g.count[2]))) return false;
-    return g.bound[z * g.stride_z + y * g.stride_y + x] * ClearanceGrid::kQuantum > r;
   }
 };
 
@@ -74,13 +67,12 @@ __attribute__((always_inline)) inline Quad load(const double* p) {
   return v;
 }
 
-// The pass itself (Coord: double for the scalar path, Quad for the vector ones). The fields are
-// read into locals once: the stores of centres could otherwise alias them and force reloads.
-// Each word of bits is kept in a register until it is full.
+// One sphere at a time (Coord: double for the scalar path, Quad for SSE2), each looked up by
+// the grid itself. The fields are read into locals once: the stores of centres could
+// otherwise alias them and force reloads. Each word of bits is kept in a register until it is
+// full.
 template <class Coord>
 __attribute__((always_inline)) inline void placeAll(const Pass& pass, const ClearanceGrid& grid) {
-  const GridView g = SlotSpheresGrid::view(grid);
-  const Quad below{g.below[0], g.below[1], g.below[2], 0.0};
   const std::size_t n = pass.n;
   const int* const link = pass.link;
   const double* const center = pass.center;
@@ -93,20 +85,14 @@ __attribute__((always_inline)) inline void placeAll(const Pass& pass, const Clea
   for (std::size_t k = 0; k < n; ++k) {
     const double* M = X_WL[link[k]].data();  // column-major 4 x 4
     const double* c = center + 4 * k;
-    double u[3];
     if constexpr (std::is_same_v<Coord, double>) {
-      double w[3];
       for (int i = 0; i < 3; ++i)
-        w[i] = ((M[i] * c[0] + M[4 + i] * c[1]) + M[8 + i] * c[2]) + M[12 + i];
-      centers[k] = Eigen::Vector3d(w[0], w[1], w[2]);
-      for (int i = 0; i < 3; ++i) u[i] = (w[i] - g.below[i]) * g.inv_size;
+        centers[k][i] = ((M[i] * c[0] + M[4 + i] * c[1]) + M[8 + i] * c[2]) + M[12 + i];
     } else {
       const Quad w = ((load(M) * c[0] + load(M + 4) * c[1]) + load(M + 8) * c[2]) + load(M + 12);
       std::memcpy(centers[k].data(), &w, 3 * sizeof(double));
-      const Quad v = (w - below) * g.inv_size;
-      for (int i = 0; i < 3; ++i) u[i] = v[i];
     }
-    const bool free = SlotSpheresGrid::clear(g, u[0], u[1], u[2], radius[k] + padding);
+    const bool free = grid.clear(centers[k], radius[k] + padding);
     bits |= std::uint64_t(free) << (k % 64);
     if (k % 64 == 63 || k + 1 == n) {
       clear[k / 64] = bits;
