@@ -2,9 +2,12 @@
 #include "dss/robot/joint_states_csv.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <ostream>
 #include <stdexcept>
@@ -13,38 +16,62 @@ namespace dss {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
-std::vector<std::string> cells(const std::string& line) {
-  std::vector<std::string> out;
+// The cells of a line as [begin, end) offsets, blanks at both ends left out.
+void cellBounds(const std::string& line, std::vector<std::pair<std::size_t, std::size_t>>& out) {
+  out.clear();
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = line.find(',', start);
-    out.push_back(
-        trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos) return out;
+    std::size_t b = start, e = comma == std::string::npos ? line.size() : comma;
+    while (b < e && isBlank(line[b])) ++b;
+    while (e > b && isBlank(line[e - 1])) --e;
+    out.emplace_back(b, e);
+    if (comma == std::string::npos) return;
     start = comma + 1;
   }
 }
 
-// Reads one line of at most `max` bytes (without the newline); false at the end of the file.
-bool readLine(std::istream& in, std::string& line, std::size_t max, const std::string& where) {
-  line.clear();
-  char c;
-  while (in.get(c)) {
-    if (c == '\n') return true;
-    if (line.size() == max)
-      throw std::runtime_error(where + ": line longer than " + std::to_string(max) +
-                               " bytes (CsvLimits::max_line_bytes)");
-    line.push_back(c);
+// Lines of at most `max` bytes (without the newline), read in blocks.
+class LineReader {
+ public:
+  LineReader(std::istream& in, std::size_t max) : in_(in), max_(max), block_(1 << 16) {}
+
+  // The next line into `line`; false at the end of the file.
+  bool next(std::string& line, const std::function<std::string()>& where) {
+    line.clear();
+    bool any = false;
+    for (;;) {
+      if (pos_ == size_ && !fill()) return any;
+      any = true;
+      const char* const b = block_.data() + pos_;
+      const char* const nl = static_cast<const char*>(std::memchr(b, '\n', size_ - pos_));
+      const std::size_t n = nl ? std::size_t(nl - b) : size_ - pos_;
+      if (n > max_ - line.size())
+        throw std::runtime_error(where() + ": line longer than " + std::to_string(max_) +
+                                 " bytes (CsvLimits::max_line_bytes)");
+      line.append(b, n);
+      pos_ += n;
+      if (nl) {
+        ++pos_;
+        return true;
+      }
+    }
   }
-  return !line.empty();
-}
+
+ private:
+  bool fill() {
+    in_.read(block_.data(), std::streamsize(block_.size()));
+    size_ = std::size_t(in_.gcount());
+    pos_ = 0;
+    return size_ > 0;
+  }
+  std::istream& in_;
+  std::size_t max_;
+  std::vector<char> block_;
+  std::size_t pos_ = 0, size_ = 0;
+};
 
 }  // namespace
 
@@ -63,23 +90,35 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
     int mimic = -1;  // joint index
   };
   std::vector<Column> columns;
+  std::vector<double> values;
   std::string line;
+  std::vector<std::pair<std::size_t, std::size_t>> bounds;
   int lineno = 0;
+  // "path:line", built only for an error message.
+  const std::function<std::string()> where = [&] { return path + ":" + std::to_string(lineno); };
+  const std::function<std::string()> where_next = [&] {
+    return path + ":" + std::to_string(lineno + 1);
+  };
+  LineReader lines(in, limits.max_line_bytes);
   for (;;) {
-    const std::string where = path + ":" + std::to_string(lineno + 1);
-    if (!readLine(in, line, limits.max_line_bytes, where)) break;
+    if (!lines.next(line, where_next)) break;
     ++lineno;
-    if (trim(line).empty()) continue;
-    const std::vector<std::string> row = cells(line);
+    cellBounds(line, bounds);
+    if (bounds.size() == 1 && bounds[0].first == bounds[0].second) continue;  // a blank line
+    const auto cell = [&](std::size_t c) {
+      return line.substr(bounds[c].first, bounds[c].second - bounds[c].first);
+    };
     if (csv.columns.empty()) {
+      std::vector<std::string> row;
+      for (std::size_t c = 0; c < bounds.size(); ++c) row.push_back(cell(c));
       if (row.size() > limits.max_columns)
-        throw std::runtime_error(where + ": " + std::to_string(row.size()) +
+        throw std::runtime_error(where() + ": " + std::to_string(row.size()) +
                                  " columns, more than " + std::to_string(limits.max_columns) +
                                  " (CsvLimits::max_columns)");
       for (const std::string& name : row) {
-        if (name.empty()) throw std::runtime_error(where + ": empty joint name in the header");
+        if (name.empty()) throw std::runtime_error(where() + ": empty joint name in the header");
         if (std::find(csv.columns.begin(), csv.columns.end(), name) != csv.columns.end())
-          throw std::runtime_error(where + ": joint '" + name + "' appears twice in the header");
+          throw std::runtime_error(where() + ": joint '" + name + "' appears twice in the header");
         Column col;
         // A state value by name (a joint, or a variable of a floating joint's rotation).
         if (const int v = robot.variableIndex(name); v >= 0) {
@@ -90,7 +129,7 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
         }
         const int j = robot.jointIndex(name);
         if (j < 0)
-          throw std::runtime_error(where + ": '" + name + "' is not a joint of robot " +
+          throw std::runtime_error(where() + ": '" + name + "' is not a joint of robot " +
                                    robot.name);
         const RobotJoint& joint = robot.joints[j];
         if (joint.active_index >= 0) {
@@ -98,7 +137,7 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
         } else if (joint.mimic_active >= 0) {
           col.mimic = j;
         } else {
-          throw std::runtime_error(where + ": joint '" + name + "' is " + toString(joint.type) +
+          throw std::runtime_error(where() + ": joint '" + name + "' is " + toString(joint.type) +
                                    ": it has no value");
         }
         csv.columns.push_back(name);
@@ -106,18 +145,29 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
       }
       continue;
     }
-    if (row.size() != columns.size())
-      throw std::runtime_error(where + ": " + std::to_string(row.size()) +
+    if (bounds.size() != columns.size())
+      throw std::runtime_error(where() + ": " + std::to_string(bounds.size()) +
                                " values, the header has " + std::to_string(columns.size()));
     if (csv.states.size() == limits.max_rows)
-      throw std::runtime_error(where + ": more than " + std::to_string(limits.max_rows) +
+      throw std::runtime_error(where() + ": more than " + std::to_string(limits.max_rows) +
                                " rows (CsvLimits::max_rows)");
-    std::vector<double> values(row.size());
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      char* end = nullptr;
-      values[c] = std::strtod(row[c].c_str(), &end);
-      if (row[c].empty() || *end != '\0')
-        throw std::runtime_error(where + ": column '" + csv.columns[c] + "': '" + row[c] +
+    values.resize(bounds.size());
+    for (std::size_t c = 0; c < bounds.size(); ++c) {
+      // In place: a number must take the whole cell. std::from_chars reads the usual decimal
+      // forms (correctly rounded, as strtod); what it refuses or cannot hold (a leading '+',
+      // hexadecimal, a value beyond a double's range) goes to strtod, which ends before the
+      // comma or the end of the line (the string is NUL-terminated).
+      const char* const b = line.c_str() + bounds[c].first;
+      const char* const e = line.c_str() + bounds[c].second;
+      const std::from_chars_result fast = std::from_chars(b, e, values[c]);
+      const char* end = fast.ptr;
+      if (fast.ec != std::errc() || end != e) {
+        char* slow = nullptr;
+        values[c] = std::strtod(b, &slow);
+        end = slow;
+      }
+      if (b == e || end != e)
+        throw std::runtime_error(where() + ": column '" + csv.columns[c] + "': '" + cell(c) +
                                  "' is not a number");
     }
     std::vector<double> q = base;
@@ -135,7 +185,7 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
               ? std::abs(values[c] - expected) <= tol
               : values[c] == expected || (std::isnan(values[c]) && std::isnan(expected));
       if (!agree)
-        throw std::runtime_error(where + ": mimic joint '" + csv.columns[c] + "' is " + row[c] +
+        throw std::runtime_error(where() + ": mimic joint '" + csv.columns[c] + "' is " + cell(c) +
                                  ", but its leader '" +
                                  robot.joints[robot.active_joints[m.mimic_active]].name +
                                  "' puts it at " + std::to_string(expected));

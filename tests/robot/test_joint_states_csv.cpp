@@ -1,7 +1,7 @@
 // Robot states as CSV (joint_states_csv.h): a written file reads back into the same states;
 // columns may name any active or mimic joint, and the others keep the base values; a mimic
 // column must agree with its leader; every malformed file is an error naming the file and the
-// line; the readers' limits hold.
+// line, and a cell is one number with blanks around it; the readers' limits hold.
 #include <unistd.h>
 
 #include <boost/test/unit_test.hpp>
@@ -112,6 +112,34 @@ BOOST_AUTO_TEST_CASE(a_mimic_column_must_agree_with_its_leader) {
   // with its mimic at inf, then refused); NaN puts it at NaN.
   BOOST_TEST(errorOf("mimic_inf.csv", "j1,m\n1e999,inf\n-inf,-inf\nnan,nan\n").empty());
   BOOST_TEST(!errorOf("mimic_inf_bad.csv", "j1,m\ninf,-inf\n").empty());
+}
+
+BOOST_AUTO_TEST_CASE(a_cell_is_one_number_with_blanks_around_it) {
+  // Blanks (spaces, tabs, a CR before the newline) around a number are not part of it; the
+  // last line may end without a newline.
+  const dss::JointStatesCsv csv = dss::readJointStatesCsv(
+      write("blanks.csv", " j1 ,\tj2\r\n 1.5 ,\t0.25\t\r\n+2,1e-1\n-0,.5"), robot(), {0, 0});
+  BOOST_REQUIRE(csv.states.size() == 3u);
+  BOOST_TEST(csv.states[0] == (std::vector<double>{1.5, 0.25}));
+  BOOST_TEST(csv.states[1] == (std::vector<double>{2, 0.1}));
+  BOOST_TEST(csv.states[2][1] == 0.5);
+  BOOST_TEST(std::signbit(csv.states[2][0]));
+  // Anything else in the cell is an error naming the cell: a second number, a unit, a NUL
+  // byte, only blanks.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"j1,j2\n0,1 2\n", "'1 2' is not a number"},
+      {"j1,j2\n0.5m,0\n", "'0.5m' is not a number"},
+      {std::string("j1,j2\n1\0"
+                   "5,0\n",
+                   11),
+       "column 'j1'"},
+      {"j1,j2\n0, \t \n", "column 'j2': '' is not a number"},
+  };
+  for (const auto& [text, part] : bad) {
+    const std::string e = errorOf("cell.csv", text);
+    BOOST_TEST(contains(e, "cell.csv:2"), e);
+    BOOST_TEST(contains(e, part), e);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(malformed_files_name_the_file_and_the_line) {
