@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <functional>
 #include <iomanip>
 #include <ostream>
 #include <stdexcept>
@@ -33,32 +32,40 @@ void cellBounds(const std::string& line, std::vector<std::pair<std::size_t, std:
   }
 }
 
-// Lines of at most `max` bytes (without the newline), read in blocks.
+// The lines of a file, each at most `max` bytes (without the newline), read in blocks and
+// counted from 1.
 class LineReader {
  public:
-  LineReader(std::istream& in, std::size_t max) : in_(in), max_(max), block_(1 << 16) {}
+  LineReader(std::istream& in, const std::string& path, std::size_t max)
+      : in_(in), path_(path), max_(max), block_(1 << 16) {}
 
   // The next line into `line`; false at the end of the file.
-  bool next(std::string& line, const std::function<std::string()>& where) {
+  bool next(std::string& line) {
     line.clear();
     bool any = false;
     for (;;) {
-      if (pos_ == size_ && !fill()) return any;
+      if (pos_ == size_ && !fill()) {
+        if (any) ++number_;  // a last line without a newline
+        return any;
+      }
       any = true;
       const char* const b = block_.data() + pos_;
       const char* const nl = static_cast<const char*>(std::memchr(b, '\n', size_ - pos_));
       const std::size_t n = nl ? std::size_t(nl - b) : size_ - pos_;
       if (n > max_ - line.size())
-        throw std::runtime_error(where() + ": line longer than " + std::to_string(max_) +
-                                 " bytes (CsvLimits::max_line_bytes)");
+        throw std::runtime_error(path_ + ":" + std::to_string(number_ + 1) + ": line longer than " +
+                                 std::to_string(max_) + " bytes (CsvLimits::max_line_bytes)");
       line.append(b, n);
       pos_ += n;
       if (nl) {
         ++pos_;
+        ++number_;
         return true;
       }
     }
   }
+  // The number of the line next() read last.
+  int number() const { return number_; }
 
  private:
   bool fill() {
@@ -68,9 +75,11 @@ class LineReader {
     return size_ > 0;
   }
   std::istream& in_;
+  const std::string& path_;
   std::size_t max_;
   std::vector<char> block_;
   std::size_t pos_ = 0, size_ = 0;
+  int number_ = 0;
 };
 
 }  // namespace
@@ -93,16 +102,10 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
   std::vector<double> values;
   std::string line;
   std::vector<std::pair<std::size_t, std::size_t>> bounds;
-  int lineno = 0;
+  LineReader lines(in, path, limits.max_line_bytes);
   // "path:line", built only for an error message.
-  const std::function<std::string()> where = [&] { return path + ":" + std::to_string(lineno); };
-  const std::function<std::string()> where_next = [&] {
-    return path + ":" + std::to_string(lineno + 1);
-  };
-  LineReader lines(in, limits.max_line_bytes);
-  for (;;) {
-    if (!lines.next(line, where_next)) break;
-    ++lineno;
+  const auto where = [&] { return path + ":" + std::to_string(lines.number()); };
+  while (lines.next(line)) {
     cellBounds(line, bounds);
     if (bounds.size() == 1 && bounds[0].first == bounds[0].second) continue;  // a blank line
     const auto cell = [&](std::size_t c) {
@@ -191,7 +194,7 @@ JointStatesCsv readJointStatesCsv(const std::string& path, const RobotModel& rob
                                  "' puts it at " + std::to_string(expected));
     }
     csv.states.push_back(std::move(q));
-    csv.lines.push_back(lineno);
+    csv.lines.push_back(lines.number());
   }
   if (csv.columns.empty()) throw std::runtime_error(path + ": no header (a line of joint names)");
   return csv;
