@@ -4,7 +4,6 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include <chrono>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,7 +14,7 @@ namespace ob = ompl::base;
 namespace dss_plan {
 
 SwitchingChecker::SwitchingChecker(const ob::SpaceInformationPtr& si)
-    : ob::StateValidityChecker(si) {}
+    : dss::ForwardingValidityChecker(si) {}
 
 void SwitchingChecker::setActive(const dss::ValidityChecker* checker) {
   active_.store(checker);
@@ -27,13 +26,11 @@ bool SwitchingChecker::isValid(const ob::State* state) const {
   if (!c)
     throw std::logic_error(
         "dss_plan: no active validity checker (a planner ran outside its wrapper)");
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool v = c->isValid(state);
-  ns_.fetch_add(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
-          .count(),
-      std::memory_order_relaxed);
-  return v;
+  return c->isValid(state);
+}
+
+const dss::ValidityChecker* SwitchingChecker::target() const {
+  return active_.load(std::memory_order_relaxed);
 }
 
 double SwitchingChecker::clearance(const ob::State* state) const {
@@ -57,7 +54,6 @@ CheckerBoundPlanner::CheckerBoundPlanner(ob::PlannerPtr inner,
 ob::PlannerStatus CheckerBoundPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
   switching_->setActive(checker_.get());
   const dss::CheckerCounters counters0 = checker_->counters();
-  switching_->resetTime();
   const auto& mv = si_->getMotionValidator();
   const std::uint64_t motions0 = dss::motionChecks(*mv);
   const auto* cmv = dynamic_cast<const dss::ContinuousMotionValidator*>(mv.get());
@@ -65,7 +61,7 @@ ob::PlannerStatus CheckerBoundPlanner::solve(const ob::PlannerTerminationConditi
   const ob::PlannerStatus status = inner_->solve(ptc);
   last_.sub_motions = cmv ? static_cast<long long>(cmv->motionChecker().subMotions() - sub0) : -1;
   last_.counters = checker_->counters() - counters0;
-  last_.checking_seconds = switching_->seconds();
+  last_.checking_seconds = double(last_.counters.checking_ns) * 1e-9;
   last_.motion_checks = dss::motionChecks(*mv) - motions0;
   return status;
 }

@@ -4,11 +4,13 @@
 //
 // How the checker follows the planner entry: the SpaceInformation holds one SwitchingChecker
 // for the whole experiment; every planner entry is a CheckerBoundPlanner wrapping the OMPL
-// planner and one checker. Its solve() makes its checker the active one, zeroes that checker's
-// counters and the switch's timer, runs the wrapped planner and snapshots the counters and the
-// checking time before returning. Benchmark then checks and simplifies the solution (with the
-// same checker, still active) and calls the post-run event, which writes the snapshot: so the
-// extra columns count the planner's own work only, not OMPL's path checks or simplification.
+// planner and one checker. Its solve() makes its checker the active one, runs the wrapped
+// planner and snapshots the difference of that checker's counters (checks, and the time in them:
+// the benchmark's checkers time their checks) before returning. The motion validator checks a
+// motion's states under the active checker as it would in a plan outside the benchmark.
+// Benchmark then checks and simplifies the solution (with the same checker, still active) and
+// calls the post-run event, which writes the snapshot: so the extra columns count the planner's
+// own work only, not OMPL's path checks or simplification.
 #pragma once
 
 #include <ompl/base/Planner.h>
@@ -24,20 +26,18 @@
 
 namespace dss_plan {
 
-/// Forwards isValid/clearance to the active checker and adds the wall time of each isValid
-/// call to a counter. The active checker is switched only between planning runs.
-class SwitchingChecker : public ompl::base::StateValidityChecker {
+/// Forwards isValid/clearance to the active checker, switched only between planning runs; the
+/// motion validators look through it to the active checker (dss::ForwardingValidityChecker).
+class SwitchingChecker : public dss::ForwardingValidityChecker {
  public:
   explicit SwitchingChecker(const ompl::base::SpaceInformationPtr& si);
   void setActive(const dss::ValidityChecker* checker);
   bool isValid(const ompl::base::State* state) const override;
   double clearance(const ompl::base::State* state) const override;
-  double seconds() const { return double(ns_.load()) * 1e-9; }
-  void resetTime() { ns_ = 0; }
+  const dss::ValidityChecker* target() const override;
 
  private:
   std::atomic<const dss::ValidityChecker*> active_{nullptr};
-  mutable std::atomic<long long> ns_{0};
 };
 
 /// What one planning run cost in collision checking (the planner's solve only).
@@ -75,7 +75,7 @@ class CheckerBoundPlanner : public ompl::base::Planner {
 /// underscores): validity checks, checking time (s), us per check, invalid states,
 /// narrow phase tests, motion checks, cap hits for the DSS checker, and sub motions with the
 /// continuous motion validator (whose swept-hull tests are not in "checking time", which
-/// times isValid calls only).
+/// times state checks only).
 void addRunProperties(const ompl::base::PlannerPtr& planner,
                       ompl::tools::Benchmark::RunProperties& run);
 

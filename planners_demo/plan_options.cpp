@@ -80,6 +80,7 @@ dss::CheckerConfig checkerConfig(const Args& a, const std::string& name) {
   cfg.scene_padding = a.padding;
   cfg.self_padding = a.self_padding;
   cfg.dss_options = a.dss_options;
+  cfg.time_checks = a.check_time || a.benchmark;
   return cfg;
 }
 

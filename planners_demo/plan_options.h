@@ -18,7 +18,7 @@ struct Args {
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;
   bool simplify = false;
-  bool check_time = false;  // wrap the checker in TimedChecker (costs two clock reads per check)
+  bool check_time = false;  // the checker times its checks (two clock reads per check)
   dss::MeshGeometryOptions meshes;
   bool demo = false;             // print the readable summary (no arguments, or --demo)
   bool default_problem = false;  // our dss_arm7 in its shelf scene (no robot given)
@@ -39,7 +39,8 @@ struct Args {
 /// With no robot given, the default problem: our dss_arm7 in its shelf scene.
 Args parseArgs(int argc, char** argv);
 
-/// The checker `name` (dss, fcl-hull, fcl-mesh) with the options' paddings and DSS settings.
+/// The checker `name` (dss, fcl-hull, fcl-mesh) with the options' paddings and DSS settings;
+/// timing its checks with --check-time and --benchmark.
 dss::CheckerConfig checkerConfig(const Args& a, const std::string& name);
 
 }  // namespace dss_plan

@@ -128,7 +128,9 @@ std::shared_ptr<const StateChecker> makeStateChecker(std::shared_ptr<const Colli
     s.obb_stage = c.obb_stage;
     s.scene_padding = c.scene_padding;
     s.self_padding = c.self_padding;
-    return std::make_shared<const DssChecker>(std::move(model), s);
+    auto checker = std::make_shared<DssChecker>(std::move(model), s);
+    checker->timeChecks(c.time_checks);
+    return checker;
   }
   if (c.checker == "fcl-hull" || c.checker == "fcl-mesh") {
     if (c.fcl_prefilter != "aabb" && c.fcl_prefilter != "shared")
@@ -140,7 +142,9 @@ std::shared_ptr<const StateChecker> makeStateChecker(std::shared_ptr<const Colli
     s.scene_padding = c.scene_padding;
     s.self_padding = c.self_padding;
     s.obb_stage = c.obb_stage;
-    return std::make_shared<const FclChecker>(std::move(model), s);
+    auto checker = std::make_shared<FclChecker>(std::move(model), s);
+    checker->timeChecks(c.time_checks);
+    return checker;
   }
   throw std::invalid_argument("unknown checker '" + c.checker +
                               "' (expected dss, fcl-hull or fcl-mesh)");

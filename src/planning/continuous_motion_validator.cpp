@@ -46,7 +46,7 @@ bool ContinuousMotionValidator::check(const ompl::base::State* s1, const ompl::b
       if (j.type == JointType::kContinuous || !j.limits.has_position_limits)
         q1[a] = q0[a] + std::remainder(q1[a] - q0[a], 2.0 * M_PI);
     }
-    const auto* vc = dynamic_cast<const ValidityChecker*>(si_->getStateValidityChecker().get());
+    const ValidityChecker* vc = decidingChecker(si_->getStateValidityChecker().get());
     ok = motion_->clear(q0.data(), q1.data(), last, motionOrderFrom(vc, s1));
   } else if (last) {
     *last = 0.0;

@@ -39,7 +39,7 @@ DiscreteMotionValidator::DiscreteMotionValidator(
     : ob::MotionValidator(si), motion_(std::move(motion)), map_(std::move(map)) {}
 
 bool DiscreteMotionValidator::directPath(const ValidityChecker* vc) const {
-  return map_->plain() && vc && &vc->checker() == &motion_->checker();
+  return map_->plain() && vc;
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
@@ -61,11 +61,11 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
                                     int* first_colliding) const {
   const ob::SpaceInformation& si = *si_;
   const int segments = n < 1 ? 1 : n;
-  const auto* vc = dynamic_cast<const ValidityChecker*>(si.getStateValidityChecker().get());
+  const ValidityChecker* vc = decidingChecker(si.getStateValidityChecker().get());
   const MotionOrder kind = motionOrderFrom(vc, s1);
   bool ok;
   if (directPath(vc)) {
-    const StateChecker& checker = motion_->checker();
+    const StateChecker& checker = vc->checker();
     const std::size_t nq = checker.model().robot().numActiveJoints();
     thread_local std::vector<double> q0, q1, q;
     if (q.size() < nq) q0.resize(nq), q1.resize(nq), q.resize(nq);

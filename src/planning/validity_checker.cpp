@@ -65,6 +65,12 @@ bool ValidityChecker::lastFoundFree(const ompl::base::State* state) const {
   return std::memcmp(last.v, g, n * sizeof(double)) == 0;
 }
 
+const ValidityChecker* decidingChecker(const ompl::base::StateValidityChecker* checker) {
+  if (const auto* ours = dynamic_cast<const ValidityChecker*>(checker)) return ours;
+  if (const auto* f = dynamic_cast<const ForwardingValidityChecker*>(checker)) return f->target();
+  return nullptr;
+}
+
 MotionOrder motionOrderFrom(const ValidityChecker* checker, const ompl::base::State* s1) {
   return checker && checker->lastFoundFree(s1) ? MotionOrder::kEndLast : MotionOrder::kEndFirst;
 }

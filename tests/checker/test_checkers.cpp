@@ -79,6 +79,37 @@ BOOST_AUTO_TEST_CASE(two_threads_give_the_same_answers) {
   BOOST_TEST(counters.collisions == 2 * (states.size() - valid));
 }
 
+BOOST_AUTO_TEST_CASE(timed_checks_add_their_time_and_change_no_answer) {
+  const auto r = dss_test::loadArm();
+  const dss::ModelSetup p = dss_test::shelfSetup(r);
+  for (const char* name : {"dss", "fcl-hull"}) {
+    dss::CheckerConfig timed_config{name};
+    timed_config.time_checks = true;
+    auto plain = dss::makeStateChecker(p.model, {name});
+    auto timed = dss::makeStateChecker(p.model, timed_config);
+    BOOST_TEST(!plain->timesChecks());
+    BOOST_TEST(timed->timesChecks());
+    std::mt19937_64 rng(5);
+    std::size_t differ = 0;
+    for (int k = 0; k < 500; ++k) {
+      std::vector<double> q = dss_test::randomGroupState(*p.model, rng);
+      if (k % 50 == 7) q[p.model->groupActive()[0]] = std::nan("");  // invalid input, timed too
+      differ += plain->check(q.data()) != timed->check(q.data());
+    }
+    BOOST_TEST(differ == 0u, name);
+    const dss::CheckerCounters a = plain->counters(), b = timed->counters();
+    BOOST_TEST(a.checks == 500u);
+    BOOST_TEST(b.checks == a.checks);
+    BOOST_TEST(b.invalid_input == 10u);
+    BOOST_TEST(b.collisions == a.collisions);
+    BOOST_TEST(a.checking_ns == 0u, name);
+    // 500 checks take far more than a nanosecond each on any machine, and far less than 10 s.
+    BOOST_TEST(b.checking_ns > 500u, name);
+    BOOST_TEST(b.checking_ns < 10'000'000'000u, name);
+    BOOST_TEST((b - b).checking_ns == 0u);
+  }
+}
+
 namespace {
 void compareOnMbm(const std::string& robot_dir, const std::string& robot, const std::string& mbm) {
   BOOST_REQUIRE_MESSAGE(fs::exists(robot_dir + "/" + robot + ".urdf") && fs::exists(mbm),

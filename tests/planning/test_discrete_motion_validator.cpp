@@ -5,9 +5,10 @@
 // floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator gives
 // OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
 // without the direct joint-value path, in both orders; the validity checker knows the last state
-// it found free.
+// it found free; a checker that forwards to ours is looked through (the same states asked).
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <algorithm>
@@ -352,6 +353,47 @@ BOOST_AUTO_TEST_CASE(another_validity_checker_decides_every_state) {
   compareWithOmpl(c, *ours, 200, 5);
   BOOST_TEST(dss_checker->counters().checks == dss_checks);  // DSS never asked
   BOOST_TEST(fcl->counters().checks > 0u);
+}
+
+namespace {
+// Passes every state on to one of our validity checkers (as dss_plan's benchmark switch does).
+class Forwarding : public dss::ForwardingValidityChecker {
+ public:
+  Forwarding(const ob::SpaceInformationPtr& si, std::shared_ptr<dss::ValidityChecker> inner)
+      : dss::ForwardingValidityChecker(si), inner_(std::move(inner)) {}
+  bool isValid(const ob::State* s) const override { return inner_->isValid(s); }
+  const dss::ValidityChecker* target() const override { return inner_.get(); }
+
+ private:
+  std::shared_ptr<dss::ValidityChecker> inner_;
+};
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_forwarding_checker_is_looked_through) {
+  // The same motions checked under our validity checker and under a checker that forwards to
+  // it: the same verdicts, and the same states asked (the same orders, the end-last one after
+  // the start was found free), so the same number of checks.
+  BOOST_TEST(dss::decidingChecker(nullptr) == nullptr);
+  std::uint64_t checks[2] = {0, 0};
+  int colliding[2] = {0, 0};
+  for (int forward : {0, 1}) {
+    Case c = ourCase("dss_arm7", "shelf");
+    auto wrapper = std::make_shared<Forwarding>(c.p.si, c.checker);
+    if (forward) c.p.si->setStateValidityChecker(wrapper);
+    BOOST_TEST(dss::decidingChecker(wrapper.get()) == c.checker.get());
+    BOOST_TEST(dss::decidingChecker(c.checker.get()) == c.checker.get());
+    auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker);
+    const std::uint64_t before = c.checker->counters().checks;
+    colliding[forward] = compareWithOmpl(c, *ours, 300, 23);
+    checks[forward] = c.checker->counters().checks - before;
+  }
+  BOOST_TEST(colliding[0] > 20);
+  BOOST_TEST(colliding[1] == colliding[0]);
+  BOOST_TEST(checks[1] == checks[0]);
+  // A checker that is not ours and does not forward: none to look through.
+  Case c = ourCase("dss_arm7", "shelf");
+  auto other = std::make_shared<ob::AllValidStateValidityChecker>(c.p.si);
+  BOOST_TEST(dss::decidingChecker(other.get()) == nullptr);
 }
 
 BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_mbm_problems, DSS_NEEDS_SHARED) {

@@ -14,11 +14,15 @@ struct CheckerCounters {
   std::uint64_t collisions = 0;     ///< of them: found in collision
   std::uint64_t pair_tests = 0;     ///< narrow-phase calls
   std::uint64_t cap_hits = 0;       ///< states with a DSS answer at the iteration cap (colliding)
+  /// Wall time in the checks, nanoseconds (0 unless the checker times its checks:
+  /// StateChecker::timeChecks).
+  std::uint64_t checking_ns = 0;
 
   /// The counts between two snapshots.
   CheckerCounters operator-(const CheckerCounters& o) const {
-    return {checks - o.checks, invalid_input - o.invalid_input, collisions - o.collisions,
-            pair_tests - o.pair_tests, cap_hits - o.cap_hits};
+    return {checks - o.checks,         invalid_input - o.invalid_input,
+            collisions - o.collisions, pair_tests - o.pair_tests,
+            cap_hits - o.cap_hits,     checking_ns - o.checking_ns};
   }
 };
 
@@ -26,7 +30,7 @@ class CounterSlots {
  public:
   struct alignas(64) Slot {
     std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0},
-        cap_hits{0};
+        cap_hits{0}, checking_ns{0};
     void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) {
       c.fetch_add(n, std::memory_order_relaxed);
     }
@@ -45,6 +49,7 @@ class CounterSlots {
       c.collisions += s.collisions.load(std::memory_order_relaxed);
       c.pair_tests += s.pair_tests.load(std::memory_order_relaxed);
       c.cap_hits += s.cap_hits.load(std::memory_order_relaxed);
+      c.checking_ns += s.checking_ns.load(std::memory_order_relaxed);
     }
     return c;
   }

@@ -72,6 +72,8 @@ struct CheckerConfig {
   /// fcl-* only: "aabb" (FCL's own world AABBs, as an OMPL/MoveIt + FCL checker does) or
   /// "shared" (the DSS checker's sweep).
   std::string fcl_prefilter = "aabb";
+  /// Every check adds its wall time to the checker's counters (StateChecker::timeChecks).
+  bool time_checks = false;
 };
 
 /// A state checker by name; throws std::invalid_argument for an unknown name or prefilter.

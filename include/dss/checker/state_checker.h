@@ -9,6 +9,8 @@
 // (CollisionModel::withinBounds), is invalid: never "free", never a crash.
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -28,13 +30,14 @@ class StateChecker {
   StateVerdict check(const double* q) const {
     CounterSlots::Slot& c = counters_.local();
     c.add(c.checks);
-    if (!model_->withinBounds(q)) {
-      c.add(c.invalid_input);
-      return StateVerdict::kInvalidInput;
-    }
-    if (!collidesWithinBounds(q, c)) return StateVerdict::kFree;
-    c.add(c.collisions);
-    return StateVerdict::kColliding;
+    if (!timed_) return decide(q, c);
+    const auto t0 = std::chrono::steady_clock::now();
+    const StateVerdict v = decide(q, c);
+    const auto ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+            .count();
+    c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
+    return v;
   }
   /// Colliding or invalid: what a planner must avoid.
   bool collides(const double* q) const { return check(q) != StateVerdict::kFree; }
@@ -43,6 +46,10 @@ class StateChecker {
   virtual std::string name() const = 0;
   const CollisionModel& model() const { return *model_; }
   CheckerCounters counters() const { return counters_.sum(); }
+  /// With `on`, every check adds its wall time to the counters (checking_ns): two clock reads
+  /// per check. Set before the checker is shared (checker_setup.h: CheckerConfig::time_checks).
+  void timeChecks(bool on) { timed_ = on; }
+  bool timesChecks() const { return timed_; }
 
  protected:
   explicit StateChecker(std::shared_ptr<const CollisionModel> model) : model_(std::move(model)) {}
@@ -52,8 +59,19 @@ class StateChecker {
   CounterSlots::Slot& counterSlot() const { return counters_.local(); }
 
  private:
+  StateVerdict decide(const double* q, CounterSlots::Slot& c) const {
+    if (!model_->withinBounds(q)) {
+      c.add(c.invalid_input);
+      return StateVerdict::kInvalidInput;
+    }
+    if (!collidesWithinBounds(q, c)) return StateVerdict::kFree;
+    c.add(c.collisions);
+    return StateVerdict::kColliding;
+  }
+
   std::shared_ptr<const CollisionModel> model_;
   CounterSlots counters_;
+  bool timed_ = false;
 };
 
 }  // namespace dss

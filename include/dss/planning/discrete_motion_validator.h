@@ -8,11 +8,12 @@
 // (MotionOrder in discrete_motion.h).
 //
 // When the space is a plain real vector (the group has no continuous or multi-DOF joints) and
-// the space information's validity checker is a dss::ValidityChecker on the same state checker,
-// the interior states are interpolated in joint values (OMPL's formula, value by value) and
-// checked without an OMPL state or a virtual call; otherwise the space interpolates them and the
-// space information's validity checker decides them. The end state always goes through the
-// space information's validity checker, as in OMPL. Motion counts are atomic (OMPL's own
+// the space information's validity checker is a dss::ValidityChecker (or forwards to one:
+// decidingChecker in validity_checker.h), the interior states are interpolated in joint values
+// (OMPL's formula, value by value) and checked by that checker's state checker without an OMPL
+// state or a virtual call; otherwise the space interpolates them and the space information's
+// validity checker decides them. The end state always goes through the space information's
+// validity checker, as in OMPL. Motion counts are atomic (OMPL's own
 // counters are not safe to increment from several threads).
 #pragma once
 
@@ -48,8 +49,8 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
              int* first_colliding) const;
-  /// Whether interior states can be checked in joint values (see the header); `vc`: the space
-  /// information's validity checker, when it is ours.
+  /// Whether interior states can be checked in joint values (see the header); `vc`: the checker
+  /// deciding the space information's states, when it is ours.
   bool directPath(const ValidityChecker* vc) const;
 
   std::shared_ptr<const DiscreteMotionChecker> motion_;

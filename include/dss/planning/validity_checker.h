@@ -57,6 +57,21 @@ class ValidityChecker : public ompl::base::StateValidityChecker {
   mutable std::atomic<std::uint64_t> out_of_bounds_{0};
 };
 
+/// A validity checker that passes every state on to one of ours unchanged (a switch between
+/// the checkers of a benchmark, a wrapper that logs): the motion validators look through it
+/// (decidingChecker) and check a motion's states as they would under that checker itself, in
+/// the same order and on the same joint-value path.
+class ForwardingValidityChecker : public ompl::base::StateValidityChecker {
+ public:
+  using ompl::base::StateValidityChecker::StateValidityChecker;
+  /// The checker isValid passes states to now; null when there is none.
+  virtual const ValidityChecker* target() const = 0;
+};
+
+/// The dss::ValidityChecker that decides the states `checker` is asked about: `checker` itself
+/// when it is one, the target of a ForwardingValidityChecker, null for any other.
+const ValidityChecker* decidingChecker(const ompl::base::StateValidityChecker* checker);
+
 /// The discrete check's order (discrete_motion.h) for a motion from s1 checked under `checker`
 /// (null: a validity checker that is not ours): kEndLast when it has just found s1 free on this
 /// thread (a planner moving from the state it has just validated towards one it holds),
