@@ -39,7 +39,9 @@ DiscreteMotionValidator::DiscreteMotionValidator(
     : ob::MotionValidator(si), motion_(std::move(motion)), map_(std::move(map)) {}
 
 bool DiscreteMotionValidator::directPath(const ValidityChecker* vc) const {
-  return map_->plain() && vc;
+  // The same model (every checker of one Problem shares it): the joint values map_ gives are
+  // the ones vc's checker takes.
+  return map_->plain() && vc && &vc->checker().model() == &motion_->checker().model();
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {

@@ -8,13 +8,14 @@
 // (MotionOrder in discrete_motion.h).
 //
 // When the space is a plain real vector (the group has no continuous or multi-DOF joints) and
-// the space information's validity checker is a dss::ValidityChecker (or forwards to one:
-// decidingChecker in validity_checker.h), the interior states are interpolated in joint values
-// (OMPL's formula, value by value) and checked by that checker's state checker without an OMPL
-// state or a virtual call; otherwise the space interpolates them and the space information's
-// validity checker decides them. The end state always goes through the space information's
-// validity checker, as in OMPL. Motion counts are atomic (OMPL's own
-// counters are not safe to increment from several threads).
+// the space information's validity checker is a dss::ValidityChecker on the same collision
+// model (any checker of the same Problem; or a checker forwarding to one: decidingChecker in
+// validity_checker.h), the interior states are interpolated in joint values (OMPL's formula,
+// value by value) and checked by that checker's state checker without an OMPL state or a
+// virtual call; otherwise the space interpolates them and the space information's validity
+// checker decides them. The end state always goes through the space information's validity
+// checker, as in OMPL. Motion counts are atomic (OMPL's own counters are not safe to increment
+// from several threads).
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
