@@ -90,8 +90,10 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     if (a.motion == "continuous")
       p.si->setMotionValidator(
           dss::makeContinuousMotionValidator(p, *checkers.front(), a.min_fraction));
-    else if (a.motion == "discrete")  // states decided by the switching checker, in our order
-      p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checkers.front()));
+    else if (a.motion == "discrete" || a.motion == "vector")  // states decided by the
+      // switching checker, in our order (vector: in batches where a dss checker decides)
+      p.si->setMotionValidator(
+          dss::makeDiscreteMotionValidator(p, *checkers.front(), a.motion == "vector"));
     // Each invalid state explained once (by exact DSS), whichever checkers refuse it.
     const auto* goals = ss.getGoal()->as<ob::GoalStates>();
     std::vector<const ob::State*> ends = {ss.getProblemDefinition()->getStartState(0)};

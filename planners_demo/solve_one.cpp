@@ -94,8 +94,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (a.motion == "continuous") {
     cmv = dss::makeContinuousMotionValidator(p, *checker, a.min_fraction);
     p.si->setMotionValidator(cmv);
-  } else if (a.motion == "discrete") {
-    p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker));
+  } else if (a.motion == "discrete" || a.motion == "vector") {
+    p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker, a.motion == "vector"));
   }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
   const bool vector_nearest =
       a.nearest == "vector" && dss::useVectorNearestNeighbors(ss.getPlanner());
@@ -155,6 +155,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["path_states"] = path_states;
   j["validity_checks"] = counters.checks;
   j["colliding_states"] = counters.collisions;
+  j["batch_free_states"] = counters.batch_free;
   j["pair_tests"] = counters.pair_tests;
   j["motion_checks"] = dss::motionChecks(*mv);
   j["checker"] = checker->checker().name();

@@ -52,8 +52,9 @@ const int* cachedCheckOrder(int n, MotionOrder kind) {
   return order.data();
 }
 
-DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker)
-    : checker_(std::move(checker)) {
+DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker,
+                                             bool batched)
+    : checker_(std::move(checker)), batched_(batched) {
   if (!checker_) throw std::invalid_argument("DiscreteMotionChecker: no state checker");
 }
 
@@ -71,9 +72,24 @@ bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segmen
     for (std::size_t k = 0; k < nq; ++k) qs[k] = q0[k] + (q1[k] - q0[k]) * t;
     return !checker.collides(qs);
   };
-  if (!last_valid_fraction) return motionStatesFree(n, free, nullptr, kind);
+  thread_local std::vector<double> lanes;
+  if (lanes.size() < nq * kMotionBatch) lanes.resize(nq * kMotionBatch);
+  auto batch = [&](const int* js, int m) {
+    const double* states[kMotionBatch];
+    for (int i = 0; i < m; ++i) {
+      double* const qi = lanes.data() + std::size_t(i) * nq;
+      const double t = double(js[i]) / double(n);
+      for (std::size_t k = 0; k < nq; ++k) qi[k] = q0[k] + (q1[k] - q0[k]) * t;
+      states[i] = qi;
+    }
+    return checker.freeStates(states, m);
+  };
+  if (!last_valid_fraction)
+    return batched_ ? motionStatesFreeBatched(n, free, batch, nullptr, kind)
+                    : motionStatesFree(n, free, nullptr, kind);
   int first = 0;
-  const bool ok = motionStatesFree(n, free, &first);
+  const bool ok = batched_ ? motionStatesFreeBatched(n, free, batch, &first)
+                           : motionStatesFree(n, free, &first);
   if (!ok) *last_valid_fraction = double(first - 1) / double(n);
   return ok;
 }

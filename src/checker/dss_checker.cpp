@@ -28,7 +28,13 @@ Scratch& scratch() {
 }  // namespace
 
 DssChecker::DssChecker(std::shared_ptr<const CollisionModel> model, const Settings& settings)
-    : StateChecker(std::move(model)), settings_(settings) {}
+    : StateChecker(std::move(model)),
+      settings_(settings),
+      batch_(this->model(), settings.scene_padding, settings.self_padding) {}
+
+unsigned DssChecker::provenFree(const double* const* q, int n) const {
+  return batch_.freeLanes(q, n, batch_path_);
+}
 
 bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) const {
   const CollisionModel& m = model();

@@ -20,33 +20,8 @@ namespace {
 // two SSE2 registers otherwise (element by element either way).
 using Quad = double __attribute__((vector_size(32)));
 
-// The grid's lookup, read once per four-lane pass (into registers).
-struct GridView {
-  double below[3];
-  double inv_size;
-  unsigned count[3];
-  std::size_t stride_y, stride_z;
-  const std::uint8_t* bound;
-};
-
-}  // namespace
-
-// The grid's fields, for the four-lane lookups (the one-sphere paths call ClearanceGrid::clear).
-class SlotSpheresGrid {
- public:
-  static GridView view(const ClearanceGrid& g) {
-    GridView v;
-    for (int a = 0; a < 3; ++a) v.below[a] = g.below_[a];
-    v.inv_size = g.inv_size_;
-    for (int a = 0; a < 3; ++a) v.count[a] = g.count_[a];
-    v.stride_y = g.stride_y_;
-    v.stride_z = g.stride_z_;
-    v.bound = g.bound_.data();
-    return v;
-  }
-};
-
-namespace {
+// The grid's lookup (ClearanceGrid::lookup), read once per four-lane pass (into registers).
+using GridView = ClearanceGrid::Lookup;
 
 struct Pass {
   std::size_t n;
@@ -112,7 +87,7 @@ void placeSse2(const Pass& p, const ClearanceGrid& g) { placeAll<Quad>(p, g); }
 // (placeOn takes it only for a grid with voxels) and its bit is masked off. The slots are padded
 // to a multiple of four with spheres that are never clear.
 DSS_TARGET_AVX2 void placeAvx2(const Pass& pass, const ClearanceGrid& grid) {
-  const GridView g = SlotSpheresGrid::view(grid);
+  const GridView g = grid.lookup();
   const std::size_t n = pass.n;
   const int* const link = pass.link;
   const double* const center = pass.center;

@@ -37,10 +37,11 @@ std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& p,
   return std::make_shared<ValidityChecker>(p.si, makeStateChecker(p.model, config), p.map);
 }
 
-std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(
-    const Problem& p, const ValidityChecker& checker) {
+std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(const Problem& p,
+                                                                     const ValidityChecker& checker,
+                                                                     bool batched) {
   return std::make_shared<DiscreteMotionValidator>(
-      p.si, std::make_shared<const DiscreteMotionChecker>(checker.checkerPtr()), p.map);
+      p.si, std::make_shared<const DiscreteMotionChecker>(checker.checkerPtr(), batched), p.map);
 }
 
 std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(

@@ -295,14 +295,20 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_our_robots) {
   cases.push_back(turnerCase());                         // a continuous joint: SO(2)
   cases.push_back(ourCase("dss_mobile_base", "aisle"));  // SE(2)
   cases.push_back(ourCase("dss_free_flyer", "window"));  // SE(3)
-  for (const Case& c : cases) {
-    auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker);
-    const int colliding = compareWithOmpl(c, *ours, 400, 3);
-    BOOST_TEST_MESSAGE(c.name << ": " << colliding << " of 400 motions colliding");
-    BOOST_TEST(colliding > 20, c.name);
-    BOOST_TEST(colliding < 380, c.name);
-    BOOST_TEST(dss::motionChecks(*ours) == 3u * 400u, c.name);  // twice, and with lastValid
-  }
+  for (const Case& c : cases)
+    for (const bool batched : {false, true}) {  // discrete, vector
+      auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker, batched);
+      const auto before = c.checker->checker().counters();
+      const int colliding = compareWithOmpl(c, *ours, 400, 3);
+      BOOST_TEST_MESSAGE(c.name << (batched ? " (vector)" : "") << ": " << colliding
+                                << " of 400 motions colliding");
+      BOOST_TEST(colliding > 20, c.name);
+      BOOST_TEST(colliding < 380, c.name);
+      BOOST_TEST(dss::motionChecks(*ours) == 3u * 400u, c.name);  // twice, and with lastValid
+      // The vector validator decides states in batches on the arm (a plain joint space).
+      const std::uint64_t batch_free = (c.checker->checker().counters() - before).batch_free;
+      BOOST_TEST((batch_free > 0u) == (batched && c.name == "dss_arm7"), c.name);
+    }
 }
 
 BOOST_AUTO_TEST_CASE(the_validity_checker_knows_the_last_state_it_found_free) {
@@ -407,10 +413,13 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_mbm_problems, DSS_N
           fromFiles(robot + " " + type, dir + "/" + robot + ".urdf", dir + "/" + robot + ".srdf",
                     folder + "/scene0001.yaml", folder + "/request0001.yaml");
       BOOST_REQUIRE(c.p.map->plain());
-      auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker);
-      const int colliding = compareWithOmpl(c, *ours, 150, 17);
-      BOOST_TEST_MESSAGE(c.name << ": " << colliding << " of 150 motions colliding");
-      BOOST_TEST(colliding > 5, c.name);
+      for (const bool batched : {false, true}) {  // discrete, vector
+        auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker, batched);
+        const int colliding = compareWithOmpl(c, *ours, 150, 17);
+        BOOST_TEST_MESSAGE(c.name << (batched ? " (vector)" : "") << ": " << colliding
+                                  << " of 150 motions colliding");
+        BOOST_TEST(colliding > 5, c.name);
+      }
     }
   }
 }

@@ -17,12 +17,14 @@ struct CheckerCounters {
   /// Wall time in the checks, nanoseconds (0 unless the checker times its checks:
   /// StateChecker::timeChecks).
   std::uint64_t checking_ns = 0;
+  /// Checks answered free by a batched pass (StateChecker::freeStates), counted in `checks`.
+  std::uint64_t batch_free = 0;
 
   /// The counts between two snapshots.
   CheckerCounters operator-(const CheckerCounters& o) const {
-    return {checks - o.checks,         invalid_input - o.invalid_input,
-            collisions - o.collisions, pair_tests - o.pair_tests,
-            cap_hits - o.cap_hits,     checking_ns - o.checking_ns};
+    return {checks - o.checks,         invalid_input - o.invalid_input, collisions - o.collisions,
+            pair_tests - o.pair_tests, cap_hits - o.cap_hits,           checking_ns - o.checking_ns,
+            batch_free - o.batch_free};
   }
 };
 
@@ -30,7 +32,7 @@ class CounterSlots {
  public:
   struct alignas(64) Slot {
     std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0},
-        cap_hits{0}, checking_ns{0};
+        cap_hits{0}, checking_ns{0}, batch_free{0};
     void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) {
       c.fetch_add(n, std::memory_order_relaxed);
     }
@@ -50,6 +52,7 @@ class CounterSlots {
       c.pair_tests += s.pair_tests.load(std::memory_order_relaxed);
       c.cap_hits += s.cap_hits.load(std::memory_order_relaxed);
       c.checking_ns += s.checking_ns.load(std::memory_order_relaxed);
+      c.batch_free += s.batch_free.load(std::memory_order_relaxed);
     }
     return c;
   }

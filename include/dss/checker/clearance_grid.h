@@ -100,13 +100,32 @@ class ClearanceGrid {
   }
   std::size_t candidateWords() const { return words_; }
 
+  /// The lookup's fields, for passes that convert many points at once (slot_spheres.h,
+  /// state_batch.h): voxel coordinates u = (c - below) * inv_size, the voxel of index
+  /// floor(u) - 1 per axis when that lies in [0, count), its lower bound at
+  /// bound[z * stride_z + y * stride_y + x].
+  struct Lookup {
+    double below[3];
+    double inv_size;
+    unsigned count[3];
+    std::size_t stride_y, stride_z;
+    const std::uint8_t* bound;
+  };
+  Lookup lookup() const {
+    return {{below_.x(), below_.y(), below_.z()},
+            inv_size_,
+            {count_[0], count_[1], count_[2]},
+            stride_y_,
+            stride_z_,
+            bound_.data()};
+  }
+
   bool empty() const { return bound_.empty(); }
   std::size_t voxels() const { return bound_.size(); }
   double voxelSize() const { return size_; }
   const Eigen::Vector3d& origin() const { return origin_; }
 
  private:
-  friend class SlotSpheresGrid;  // the same lookups, many spheres per pass (slot_spheres.h)
   /// f truncated to int; INT_MIN for NaN and for values out of the int range.
   static int toIndex(double f) {
 #if defined(__SSE2__)

@@ -58,10 +58,65 @@ bool motionStatesFree(int n, Free&& free, int* first_colliding = nullptr,
   return true;
 }
 
+/// The same verdict (and first colliding state) as motionStatesFree, with states decided in
+/// batches: `batch(js, m)` returns bit i set for each state js[i] (m <= kMotionBatch states)
+/// proven free (StateChecker::freeStates); the states it leaves are decided by `free`, in the
+/// same order as the batch lists them, and so is state n (the end state, which OMPL decides
+/// with the space information's validity checker). Without `first_colliding`: the first
+/// `kMotionProbes` states of the order one by one (a colliding motion mostly ends there), then
+/// the rest of the order in batches; with it, in order from state 1, batch after batch. Runs of
+/// fewer than kMotionMinBatch states go one by one.
+constexpr int kMotionBatch = 8;
+constexpr int kMotionProbes = 2;
+constexpr int kMotionMinBatch = 3;
+template <class Free, class Batch>
+bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colliding = nullptr,
+                             MotionOrder kind = MotionOrder::kEndFirst) {
+  int js[kMotionBatch];
+  // The states order[begin, end) except n, batch by batch (those a batch leaves, in batch
+  // order), n where it comes: the first colliding one in *at.
+  auto run = [&](const int* order, int begin, int end, int* at) {
+    int k = begin;
+    while (k < end) {
+      int m = 0, stop = k;
+      while (stop < end && m < kMotionBatch && order[stop] != n) js[m++] = order[stop++];
+      if (m >= kMotionMinBatch) {
+        const unsigned proven = batch(js, m);
+        for (int i = 0; i < m; ++i)
+          if (!((proven >> i) & 1u) && !free(js[i])) return *at = js[i], false;
+      } else {
+        for (int i = 0; i < m; ++i)
+          if (!free(js[i])) return *at = js[i], false;
+      }
+      k = stop;
+      if (k < end && order[k] == n) {
+        if (!free(n)) return *at = n, false;
+        ++k;
+      }
+    }
+    return true;
+  };
+  int at = 0;
+  if (first_colliding) {
+    thread_local std::vector<int> in_order;
+    in_order.resize(std::size_t(n > 0 ? n : 0));
+    for (int j = 1; j <= n; ++j) in_order[std::size_t(j - 1)] = j;
+    const bool ok = run(in_order.data(), 0, n, &at);
+    *first_colliding = ok ? n + 1 : at;
+    return ok;
+  }
+  const int* order = cachedCheckOrder(n, kind);
+  const int probes = n < kMotionProbes ? n : kMotionProbes;
+  for (int k = 0; k < probes; ++k)
+    if (!free(order[k])) return false;
+  return run(order, probes, n, &at);
+}
+
 class DiscreteMotionChecker {
  public:
-  /// Throws std::invalid_argument for a null checker.
-  explicit DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker);
+  /// Throws std::invalid_argument for a null checker. `batched`: states decided in batches
+  /// where the checker proves them free (motionStatesFreeBatched), the same verdicts.
+  explicit DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker, bool batched = false);
 
   /// True when the straight joint-space motion from q0 to q1 (active joint values) is free at
   /// `segments` segments: the states q0 + (q1 - q0) j / segments for j = 1 .. segments - 1
@@ -75,9 +130,11 @@ class DiscreteMotionChecker {
              MotionOrder kind = MotionOrder::kEndFirst) const;
 
   const StateChecker& checker() const { return *checker_; }
+  bool batched() const { return batched_; }
 
  private:
   std::shared_ptr<const StateChecker> checker_;
+  bool batched_ = false;
 };
 
 }  // namespace dss

@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 
+#include "dss/checker/state_batch.h"
 #include "dss/checker/state_checker.h"
 #include "dss/core/result.h"
 
@@ -51,8 +52,16 @@ class DssChecker : public StateChecker {
   /// sub-motions' ends. True for a colliding or invalid state.
   bool collidesWithPoses(const double* q, const Eigen::Isometry3d* X_WL) const;
 
+  /// The instruction set of freeStates' batched pass (activeSimdPath() by default; kScalar:
+  /// no batched pass, every state to check()). Set before the checker is shared.
+  void setBatchPath(SimdPath path) { batch_path_ = path; }
+  SimdPath batchPath() const { return batch_path_; }
+  const StateBatch& batch() const { return batch_; }
+
  private:
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
+  /// The batch's lanes proven free (state_batch.h).
+  unsigned provenFree(const double* const* q, int n) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
   /// `base_free`: the base-scene table's bits for the state (none by default).
@@ -60,6 +69,8 @@ class DssChecker : public StateChecker {
                   double scene_padding, double self_padding, std::uint8_t base_free = 0) const;
 
   Settings settings_;
+  StateBatch batch_;
+  SimdPath batch_path_ = activeSimdPath();
 };
 
 }  // namespace dss

@@ -39,6 +39,29 @@ class StateChecker {
     c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
     return v;
   }
+  /// Up to kBatchLanes states at once (the states of a motion): bit l set when state q[l] is
+  /// proven free by the checker's batched pass (check(q[l]) would answer kFree), each such
+  /// state counted as one check (and in batch_free); the others are left to check(). A
+  /// checker without a batched pass proves none.
+  static constexpr int kBatchLanes = 8;
+  unsigned freeStates(const double* const* q, int n) const {
+    CounterSlots::Slot& c = counters_.local();
+    const auto t0 =
+        timed_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    const unsigned free = provenFree(q, n);
+    if (timed_) {
+      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now() - t0)
+                          .count();
+      c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
+    }
+    if (free) {
+      const auto k = static_cast<std::uint64_t>(__builtin_popcount(free));
+      c.add(c.checks, k);
+      c.add(c.batch_free, k);
+    }
+    return free;
+  }
   /// Colliding or invalid: what a planner must avoid.
   bool collides(const double* q) const { return check(q) != StateVerdict::kFree; }
 
@@ -56,6 +79,8 @@ class StateChecker {
   /// Whether a state within the model's bounds collides; `counters` (this thread's slot) takes
   /// the narrow-phase tests and cap hits.
   virtual bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const = 0;
+  /// freeStates' lanes (none by default).
+  virtual unsigned provenFree(const double* const*, int) const { return 0; }
   CounterSlots::Slot& counterSlot() const { return counters_.local(); }
 
  private:

@@ -42,8 +42,11 @@ std::shared_ptr<ValidityChecker> makeValidityChecker(const Problem& problem,
 
 /// The discrete motion validator on the state checker of a validity checker of the problem
 /// (set that validity checker on problem.si for the direct path: discrete_motion_validator.h).
-std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(
-    const Problem& problem, const ValidityChecker& checker);
+/// `batched`: the vector motion validator, the same states decided in batches where the
+/// checker proves them free (motionStatesFreeBatched in discrete_motion.h).
+std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(const Problem& problem,
+                                                                     const ValidityChecker& checker,
+                                                                     bool batched = false);
 
 /// The continuous motion validator on a DSS validity checker of the problem; throws
 /// std::invalid_argument for another checker. `min_fraction`: see ContinuousMotionChecker.

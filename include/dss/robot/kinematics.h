@@ -57,6 +57,7 @@ class Kinematics {
   std::size_t numActiveJoints() const { return num_active_; }
 
  private:
+  friend class KinematicsBatch;  // the same steps in float lanes (kinematics_batch.h)
   enum class Motion : unsigned char {
     kNone,
     kRotX,

@@ -1,0 +1,89 @@
+// Eight states at once (the states of one motion, as a motion validator interpolates them):
+// which of them the cheap stages prove free, in float lanes, so that only the others need the
+// exact check.
+//
+// Per lane, in double as the checkers do: the model's bounds, the held joints at their held
+// values, the self-pair tables (none certifies a collision; their free flags skip pairs). Then
+// in float lanes, one state per lane: the pose links' poses (kinematics_batch.h), every slot
+// sphere's centre, the clearance grid's lower bound at each sphere checked against the scene
+// (and at its chain points when the sphere alone is not cleared), and the slot spheres of
+// every self pair the tables leave. A lane is proven free when every sphere checked against
+// the scene is cleared by the grid (or all its chain points are) and every such self pair's
+// spheres are apart, each test grown by margin(), which bounds the float poses' error.
+//
+// Every stage the exact sweep (sweep.h) runs is conservative and these tests are stricter
+// versions of its own first stages, so a state proven free here is one the exact check finds
+// free: its grid lookups and sphere tests clear the same slots and pairs, and any pair it
+// passes on to its later stages is apart by more than the padding (their exact answers are
+// "apart"; only a narrow phase at its iteration cap could answer otherwise, and a pair this
+// far apart does not reach it). States not proven free are left to the exact check: a batch
+// changes no answer.
+//
+// Arms only (kinematics_batch.h): a model with a prismatic, planar or floating group joint, or
+// with a base-scene table, proves no lane free (enabled() is false).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "dss/checker/collision_model.h"
+#include "dss/core/simd_path.h"
+#include "dss/robot/kinematics_batch.h"
+
+namespace dss {
+
+class StateBatch {
+ public:
+  static constexpr int kLanes = KinematicsBatch::kLanes;
+
+  StateBatch() = default;
+  /// For checks of `model` (which must outlive the batch) at these paddings.
+  StateBatch(const CollisionModel& model, double scene_padding, double self_padding);
+
+  bool enabled() const { return enabled_; }
+  /// How far (metres) a float centre may lie from the exact one: every test is grown by it.
+  double margin() const { return margin_; }
+
+  /// Bit l set when state q[l] (active joint values, l < n <= kLanes) is proven free.
+  /// kScalar proves none (every state to the exact check); kSse2 and kAvx2 run the lanes.
+  unsigned freeLanes(const double* const* q, int n, SimdPath path) const;
+
+ private:
+  struct SceneSlot {
+    int slot;             ///< index into the slots (its centre)
+    int threshold;        ///< cleared when the grid's bound (quanta) exceeds this
+    int first_chain = 0;  ///< into chain_
+    int num_chain = 0;
+  };
+  struct ChainPoint {
+    int pose_link;
+    float c[3];  ///< in the pose link's frame
+    int threshold;
+  };
+  struct SelfPair {
+    int a, b;      ///< slots
+    int table;     ///< -1: none
+    float min_sq;  ///< apart when the centres' squared distance exceeds this
+  };
+  /// The lanes' work after the per-lane tests: `valid` lanes, the tables' flags (per table, bit
+  /// l for lane l).
+  unsigned provenFree(const double* qs, unsigned valid, const unsigned* skip, SimdPath path) const;
+  unsigned runGeneric(const double* qs, unsigned valid, const unsigned* skip) const;
+  unsigned runAvx2(const double* qs, unsigned valid, const unsigned* skip) const;
+  unsigned run(const double* qs, unsigned valid, const unsigned* skip, SimdPath path) const;
+
+  const CollisionModel* model_ = nullptr;
+  bool enabled_ = false;
+  double margin_ = 0.0;
+  double self_padding_ = 0.0;
+  KinematicsBatch kin_;
+  std::vector<int> slot_link_;      ///< per slot: its pose link
+  std::vector<float> slot_center_;  ///< per slot: its centre in the pose link's frame (3)
+  std::vector<SceneSlot> scene_;
+  std::vector<ChainPoint> chain_;
+  std::vector<SelfPair> pairs_;
+  std::size_t num_links_ = 0;
+};
+
+}  // namespace dss

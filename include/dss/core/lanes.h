@@ -1,0 +1,34 @@
+// Eight float lanes (one AVX register in a function compiled for AVX2, two SSE2 registers
+// otherwise) and the helpers the batched passes share: kinematics_batch.h and state_batch.h
+// compute one state per lane with the compiler's generic vectors, element by element.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+namespace dss::lanes {
+
+constexpr int kLanes = 8;
+using F8 = float __attribute__((vector_size(32)));
+using I8 = std::int32_t __attribute__((vector_size(32)));
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+__attribute__((always_inline)) inline F8 load(const float* p) {
+  F8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+__attribute__((always_inline)) inline void store(float* p, F8 v) { std::memcpy(p, &v, sizeof v); }
+__attribute__((always_inline)) inline F8 broadcast(float x) { return F8{} + x; }
+/// Bit l set where lane l of m is non-zero (a comparison's all-ones lanes).
+__attribute__((always_inline)) inline unsigned laneBits(I8 m) {
+  std::int32_t v[kLanes];
+  std::memcpy(v, &m, sizeof v);
+  unsigned bits = 0;
+  for (int l = 0; l < kLanes; ++l) bits |= unsigned(v[l] != 0) << l;
+  return bits;
+}
+#pragma GCC diagnostic pop
+
+}  // namespace dss::lanes

@@ -1,0 +1,215 @@
+// StateBatch: the states of a batch proven free by the cheap stages in float lanes (see
+// dss/checker/state_batch.h).
+#include "dss/checker/state_batch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "dss/core/lanes.h"
+
+namespace dss {
+
+namespace {
+// The grid's threshold for a sphere of radius r (metres): a bound of more than this many quanta
+// proves it clear; INT_MAX when no stored bound can.
+int gridThreshold(double r) {
+  const double t = std::floor(r / ClearanceGrid::kQuantum);
+  return t < 255.0 ? static_cast<int>(t) : 0x7fffffff;
+}
+}  // namespace
+
+StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double self_padding)
+    : model_(&model), self_padding_(self_padding), kin_(model.sweepKinematics()) {
+  num_links_ = model.robot().links.size();
+  enabled_ = kin_.supported() && model.baseTable().slots().empty();
+  if (!enabled_) return;
+  const auto& slots = model.slots();
+  const auto& chain = model.chainPoints();
+  // The margin: the poses' error at the farthest centre, plus the float roundings of a centre
+  // (its products and sums) and of the grid's voxel coordinates.
+  double far = 0.0;
+  for (const auto& s : slots) far = std::max(far, s.center_P.norm());
+  for (const auto& p : chain) far = std::max(far, p.c_P.norm());
+  const ClearanceGrid& grid = model.clearanceGrid();
+  const ClearanceGrid::Lookup g = grid.lookup();
+  const double voxels = double(std::max({g.count[0], g.count[1], g.count[2]}));
+  constexpr double u = 0x1p-24;
+  margin_ = kin_.positionError() + kin_.rotationError() * far + 16.0 * u * (far + 1.0) +
+            8.0 * u * (voxels + 2.0) * grid.voxelSize() + 1e-6;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const auto& s = slots[k];
+    slot_link_.push_back(s.pose_link);
+    for (int i = 0; i < 3; ++i) slot_center_.push_back(static_cast<float>(s.center_P[i]));
+    if (s.obstacles.empty()) continue;  // nothing to check against the scene
+    SceneSlot ss;
+    ss.slot = static_cast<int>(k);
+    ss.threshold = gridThreshold(s.radius + scene_padding + margin_);
+    ss.first_chain = static_cast<int>(chain_.size());
+    for (int c = s.first_chain; c < s.first_chain + s.num_chain; ++c) {
+      const auto& p = chain[std::size_t(c)];
+      chain_.push_back({s.pose_link,
+                        {float(p.c_P.x()), float(p.c_P.y()), float(p.c_P.z())},
+                        gridThreshold(p.outer + scene_padding + margin_)});
+    }
+    ss.num_chain = static_cast<int>(chain_.size()) - ss.first_chain;
+    scene_.push_back(ss);
+  }
+  for (const auto& p : model.selfPairs()) {
+    const double r = p.radius_sum + self_padding + 2.0 * margin_;
+    // Rounded up to float with room for the float squared distance's roundings.
+    pairs_.push_back({p.a, p.b, p.table, static_cast<float>(r * r * (1.0 + 1e-5))});
+  }
+}
+
+unsigned StateBatch::freeLanes(const double* const* q, int n, SimdPath path) const {
+  if (!enabled_ || n <= 0 || path == SimdPath::kScalar) return 0;
+  n = std::min(n, kLanes);
+  const CollisionModel& m = *model_;
+  const std::size_t nq = m.robot().numActiveJoints();
+  const std::size_t tables = m.selfTables().size();
+  thread_local std::vector<double> qs;
+  thread_local std::vector<unsigned char> lane_skip;
+  thread_local std::vector<unsigned> skip;  // per table, bit l: lane l's flag
+  if (qs.size() < nq * kLanes) qs.resize(nq * kLanes);
+  if (skip.size() < tables) skip.resize(tables);
+  if (lane_skip.size() < tables) lane_skip.resize(tables);
+  std::fill(skip.begin(), skip.begin() + static_cast<std::ptrdiff_t>(tables), 0u);
+  // The per-lane tests in double, as the checker runs them; the lanes' values transposed
+  // (lanes past n repeat the first state).
+  unsigned valid = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const double* ql = q[l < n ? l : 0];
+    for (std::size_t j = 0; j < nq; ++j) qs[j * kLanes + std::size_t(l)] = ql[j];
+    if (l >= n || !m.withinBounds(ql) || !m.heldMatch(ql)) continue;
+    if (m.selfTables().read(ql, true, self_padding_, lane_skip.data())) continue;
+    for (std::size_t t = 0; t < tables; ++t) skip[t] |= unsigned(lane_skip[t] != 0) << l;
+    valid |= 1u << l;
+  }
+  if (!valid) return 0;
+  return valid & provenFree(qs.data(), valid, skip.data(), path);
+}
+
+unsigned StateBatch::provenFree(const double* qs, unsigned valid, const unsigned* skip,
+                                SimdPath path) const {
+  if (path == SimdPath::kAvx2 && simdPathAvailable(SimdPath::kAvx2))
+    return runAvx2(qs, valid, skip);
+  return runGeneric(qs, valid, skip);
+}
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace {
+using lanes::F8;
+using lanes::I8;
+using lanes::kLanes;
+
+// A point in the lanes.
+struct Point {
+  F8 x, y, z;
+};
+
+// X p for the lanes' poses X and a point p of the link's frame.
+__attribute__((always_inline)) inline Point place(const KinematicsBatch::Pose& X, const float* p) {
+  auto e = [&X](int k) { return lanes::load(X.v[k]); };
+  return {((e(9) + e(0) * p[0]) + e(3) * p[1]) + e(6) * p[2],
+          ((e(10) + e(1) * p[0]) + e(4) * p[1]) + e(7) * p[2],
+          ((e(11) + e(2) * p[0]) + e(5) * p[1]) + e(8) * p[2]};
+}
+
+// The lanes where the grid's lower bound at point c exceeds `threshold` quanta (never outside
+// the grid or for NaN).
+__attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lookup& g,
+                                                         const float* below, float inv,
+                                                         const Point& c, int threshold) {
+  // Voxel coordinates, clamped so that the conversion is defined: NaN and values below 0
+  // become -1 (outside), huge ones 1e7 (outside).
+  auto coord = [inv](F8 v, float b) {
+    F8 u = (v - b) * inv;
+    u = u > 0.0f ? u : -1.0f;
+    u = u < 1e7f ? u : 1e7f;
+    return __builtin_convertvector(u, I8) - 1;
+  };
+  const I8 x = coord(c.x, below[0]), y = coord(c.y, below[1]), z = coord(c.z, below[2]);
+  const I8 inside = (x >= 0) & (x < I8{} + std::int32_t(g.count[0])) & (y >= 0) &
+                    (y < I8{} + std::int32_t(g.count[1])) & (z >= 0) &
+                    (z < I8{} + std::int32_t(g.count[2]));
+  const I8 index = (z * std::int32_t(g.stride_z) + y * std::int32_t(g.stride_y) + x) & inside;
+  std::int32_t at[kLanes];
+  std::memcpy(at, &index, sizeof at);
+  const unsigned in = lanes::laneBits(inside);
+  unsigned clear = 0;
+  for (int l = 0; l < kLanes; ++l)
+    clear |= unsigned(((in >> l) & 1u) && g.bound[at[l]] > threshold) << l;
+  return clear;
+}
+}  // namespace
+
+__attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs, unsigned valid,
+                                                               const unsigned* skip,
+                                                               SimdPath path) const {
+  thread_local std::vector<KinematicsBatch::Pose> poses;
+  thread_local std::vector<float> centers;  // per slot x, y, z in lanes
+  if (poses.size() < num_links_) poses.resize(num_links_);
+  if (centers.size() < slot_link_.size() * 3 * kLanes)
+    centers.resize(slot_link_.size() * 3 * kLanes);
+  KinematicsBatch::Pose* const X = poses.data();
+  float* const centre = centers.data();
+  kin_.compute(qs, X, path);
+  for (std::size_t k = 0; k < slot_link_.size(); ++k) {
+    const Point p = place(X[slot_link_[k]], &slot_center_[3 * k]);
+    lanes::store(centre + (3 * k) * kLanes, p.x);
+    lanes::store(centre + (3 * k + 1) * kLanes, p.y);
+    lanes::store(centre + (3 * k + 2) * kLanes, p.z);
+  }
+  auto c = [centre](int k) -> Point {
+    const float* p = centre + 3 * std::size_t(k) * kLanes;
+    return {lanes::load(p), lanes::load(p + kLanes), lanes::load(p + 2 * kLanes)};
+  };
+  unsigned open = valid;  // lanes not yet failed
+  // Robot vs scene: each sphere's lookup, then its chain points for the lanes it leaves.
+  const ClearanceGrid::Lookup g = model_->clearanceGrid().lookup();
+  const float below[3] = {float(g.below[0]), float(g.below[1]), float(g.below[2])};
+  const float inv = float(g.inv_size);
+  for (const SceneSlot& s : scene_) {
+    const unsigned clear = gridClear(g, below, inv, c(s.slot), s.threshold);
+    unsigned left = open & ~clear;
+    if (!left) continue;
+    if (s.num_chain == 0) {
+      open &= ~left;
+    } else {
+      unsigned all = left;
+      for (int p = s.first_chain; p < s.first_chain + s.num_chain && all; ++p) {
+        const ChainPoint& cp = chain_[std::size_t(p)];
+        all &= gridClear(g, below, inv, place(X[cp.pose_link], cp.c), cp.threshold);
+      }
+      open &= ~(left & ~all);
+    }
+    if (!open) return 0;
+  }
+  // Self pairs: the slot spheres apart, or the pair's table flag set.
+  for (const SelfPair& p : pairs_) {
+    const Point a = c(p.a), b = c(p.b);
+    const F8 dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+    const F8 d2 = (dx * dx + dy * dy) + dz * dz;
+    unsigned near = lanes::laneBits(d2 > p.min_sq ? I8{} : I8{} - 1);
+    if (p.table >= 0) near &= ~skip[p.table];
+    open &= ~near;
+    if (!open) return 0;
+  }
+  return open;
+}
+
+unsigned StateBatch::runGeneric(const double* qs, unsigned valid, const unsigned* skip) const {
+  return run(qs, valid, skip, SimdPath::kSse2);
+}
+
+DSS_TARGET_AVX2 unsigned StateBatch::runAvx2(const double* qs, unsigned valid,
+                                             const unsigned* skip) const {
+  return run(qs, valid, skip, SimdPath::kAvx2);
+}
+
+#pragma GCC diagnostic pop
+
+}  // namespace dss
