@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "dss/checker/continuous_motion.h"
+#include "dss/checker/discrete_motion.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/checker/motion_bounds.h"
 #include "dss/checker/sweep.h"
@@ -226,6 +227,7 @@ struct Setting {
   double pad = 0.0;
   double resolution = 0.01;  // 0: continuous validator
   bool plan = false;
+  bool batched = false;  // the vector validator's batches (discrete_motion.h)
 
   std::string stateKey() const {
     std::ostringstream os;
@@ -234,7 +236,7 @@ struct Setting {
   }
   std::string motionKey() const {
     std::ostringstream os;
-    os << stateKey() << "|" << resolution;
+    os << stateKey() << "|" << resolution << (batched ? "|vector" : "");
     return os.str();
   }
   bool isFcl() const { return geo == Geo::kMesh || geo == Geo::kFclHull; }
@@ -245,7 +247,7 @@ struct Setting {
   std::string motionName() const {
     if (resolution <= 0) return "continuous";
     std::ostringstream os;
-    os << "discrete " << resolution * 100 << "%";
+    os << (batched ? "vector " : "discrete ") << resolution * 100 << "%";
     return os.str();
   }
 };
@@ -274,6 +276,8 @@ std::vector<Setting> allSettings() {
   add("discrete 0.5%", "motion", Geo::kHull, E, 64, 0, 0.005, false);
   add("discrete 0.1%", "motion", Geo::kHull, E, 64, 0, 0.001, false);
   add("continuous", "motion", Geo::kHull, E, 64, 0, 0.0, true);
+  add("vector", "motion", Geo::kHull, E, 64, 0, 0.01, false);
+  s.back().batched = true;
   add("spheres float", "combination", Geo::kSpheres, Mode::kFloat, 64, 0, 0.01, false);
   add("float cap 20", "combination", Geo::kHull, Mode::kFloat, 20, 0, 0.01, false);
   add("continuous pad 1cm", "combination", Geo::kHull, E, 64, 0.01, 0.0, false);
@@ -598,9 +602,10 @@ struct Instance {
   const VariantProblem* vp = nullptr;
   std::shared_ptr<const StateChecker> checker;
   std::shared_ptr<const ContinuousMotionChecker> cmv;
-  std::vector<double> qs;      // states, pre-mapped (n x nq)
-  std::vector<double> m0, m1;  // motion endpoints, pre-mapped
-  std::vector<long> segs;      // discrete segments per motion
+  std::shared_ptr<const DiscreteMotionChecker> vector;  // the batched discrete check
+  std::vector<double> qs;                               // states, pre-mapped (n x nq)
+  std::vector<double> m0, m1;                           // motion endpoints, pre-mapped
+  std::vector<long> segs;                               // discrete segments per motion
 };
 
 std::shared_ptr<const StateChecker> makeSettingChecker(const VariantProblem& vp, const Setting& s) {
@@ -922,6 +927,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
         in->cmv = std::make_shared<const ContinuousMotionChecker>(
             std::dynamic_pointer_cast<const DssChecker>(in->checker));
       }
+      if (s->batched) in->vector = std::make_shared<const DiscreteMotionChecker>(in->checker, true);
       const std::size_t nq = vp.nq();
       in->qs.resize(ctx.states.size() * nq);
       for (std::size_t i = 0; i < ctx.states.size(); ++i)
@@ -986,6 +992,8 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
           bool coll = in.checker->collides(q0);
           if (!coll && in.cmv) {
             coll = !in.cmv->clear(q0, q1);
+          } else if (!coll && in.vector) {  // the same states, the end first, in batches
+            coll = !in.vector->clear(q0, q1, int(in.segs[i]));
           } else if (!coll) {
             // OMPL order: the end state, then the interior states in order.
             coll = in.checker->collides(q1);
@@ -1021,7 +1029,7 @@ std::vector<Row> runRobot(const Args& a, const RobotSpec& spec, int robot_index,
     const bool hull_exact = (s->geo == Geo::kHull || s->geo == Geo::kDecomposed) &&
                             s->mode == Mode::kExact && s->pad == 0.0;
     const bool tally_fa = s->mode == Mode::kExact && s->pad == 0.0 && s->cap == 64 && !s->isFcl() &&
-                          s->resolution == 0.01;
+                          s->resolution == 0.01 && !s->batched;
     std::map<std::string, long> fa_pairs;
     for (long si = 0; si < nsc; ++si) {
       const SceneCtx& ctx = *run.scenes[si];

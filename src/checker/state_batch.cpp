@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "dss/checker/sphere_chain.h"
 #include "dss/core/lanes.h"
 
 namespace dss {
@@ -25,41 +26,62 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
   enabled_ = kin_.supported() && model.baseTable().slots().empty();
   if (!enabled_) return;
   const auto& slots = model.slots();
-  const auto& chain = model.chainPoints();
+  const auto& elements = model.elements();
+  // Each slot's cover: the chains of balls of its elements (sphere_chain.h), in its pose
+  // link's frame, where they are tighter than its sphere (and few enough to pay).
+  constexpr int kMaxCoverElements = 8, kMaxCoverBalls = 24;
+  struct RawBall {
+    Eigen::Vector3d c;
+    double r;
+  };
+  std::vector<std::vector<RawBall>> covers(slots.size());
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const auto& s = slots[k];
+    if (s.num_elements > kMaxCoverElements) continue;
+    std::vector<RawBall> balls;
+    bool tighter = false;
+    for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
+      const CollisionModel::Element& el = elements[std::size_t(e)];
+      const SphereChain chain = sphereChain(el.source->shape, el.box_center_S, el.box_half);
+      for (int i = 0; i < chain.num_points; ++i) {
+        balls.push_back({el.X_PS * chain.center_S[i], chain.outer[i]});
+        tighter = tighter || chain.outer[i] < s.radius * (1.0 - 1e-6);
+      }
+    }
+    if (tighter && balls.size() <= std::size_t(kMaxCoverBalls)) covers[k] = std::move(balls);
+  }
   // The margin: the poses' error at the farthest centre, plus the float roundings of a centre
   // (its products and sums) and of the grid's voxel coordinates.
   double far = 0.0;
-  for (const auto& s : slots) far = std::max(far, s.center_P.norm());
-  for (const auto& p : chain) far = std::max(far, p.c_P.norm());
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    far = std::max(far, slots[k].center_P.norm());
+    for (const RawBall& b : covers[k]) far = std::max(far, b.c.norm());
+  }
   const ClearanceGrid& grid = model.clearanceGrid();
   const ClearanceGrid::Lookup g = grid.lookup();
   const double voxels = double(std::max({g.count[0], g.count[1], g.count[2]}));
   constexpr double u = 0x1p-24;
   margin_ = kin_.positionError() + kin_.rotationError() * far + 16.0 * u * (far + 1.0) +
             8.0 * u * (voxels + 2.0) * grid.voxelSize() + 1e-6;
+  // A radius grown for the self pairs: the margin and half the self padding, rounded up.
+  const auto grown = [&](double r) {
+    return static_cast<float>((r + margin_ + 0.5 * self_padding) * (1.0 + 1e-6));
+  };
   for (std::size_t k = 0; k < slots.size(); ++k) {
     const auto& s = slots[k];
     slot_link_.push_back(s.pose_link);
     for (int i = 0; i < 3; ++i) slot_center_.push_back(static_cast<float>(s.center_P[i]));
-    if (s.obstacles.empty()) continue;  // nothing to check against the scene
-    SceneSlot ss;
-    ss.slot = static_cast<int>(k);
-    ss.threshold = gridThreshold(s.radius + scene_padding + margin_);
-    ss.first_chain = static_cast<int>(chain_.size());
-    for (int c = s.first_chain; c < s.first_chain + s.num_chain; ++c) {
-      const auto& p = chain[std::size_t(c)];
-      chain_.push_back({s.pose_link,
-                        {float(p.c_P.x()), float(p.c_P.y()), float(p.c_P.z())},
-                        gridThreshold(p.outer + scene_padding + margin_)});
-    }
-    ss.num_chain = static_cast<int>(chain_.size()) - ss.first_chain;
-    scene_.push_back(ss);
+    slot_grown_.push_back(grown(s.radius));
+    Cover cover{static_cast<int>(balls_.size()), static_cast<int>(covers[k].size())};
+    for (const RawBall& b : covers[k])
+      balls_.push_back({{float(b.c.x()), float(b.c.y()), float(b.c.z())},
+                        grown(b.r),
+                        gridThreshold(b.r + scene_padding + margin_)});
+    cover_.push_back(cover);
+    if (!s.obstacles.empty())  // checked against the scene
+      scene_.push_back({static_cast<int>(k), gridThreshold(s.radius + scene_padding + margin_)});
   }
-  for (const auto& p : model.selfPairs()) {
-    const double r = p.radius_sum + self_padding + 2.0 * margin_;
-    // Rounded up to float with room for the float squared distance's roundings.
-    pairs_.push_back({p.a, p.b, p.table, static_cast<float>(r * r * (1.0 + 1e-5))});
-  }
+  for (const auto& p : model.selfPairs()) pairs_.push_back({p.a, p.b, p.table});
 }
 
 unsigned StateBatch::freeLanes(const double* const* q, int n, SimdPath path) const {
@@ -167,35 +189,83 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     const float* p = centre + 3 * std::size_t(k) * kLanes;
     return {lanes::load(p), lanes::load(p + kLanes), lanes::load(p + 2 * kLanes)};
   };
+  // The world centres of a slot's cover balls, placed when first needed.
+  thread_local std::vector<float> ball_store;
+  thread_local std::vector<char> placed;
+  if (ball_store.size() < balls_.size() * 3 * kLanes) ball_store.resize(balls_.size() * 3 * kLanes);
+  if (placed.size() < cover_.size()) placed.resize(cover_.size());
+  std::fill(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(cover_.size()), 0);
+  float* const ball_centre = ball_store.data();
+  auto ball = [ball_centre](int i) -> Point {
+    const float* p = ball_centre + 3 * std::size_t(i) * kLanes;
+    return {lanes::load(p), lanes::load(p + kLanes), lanes::load(p + 2 * kLanes)};
+  };
+  auto placeCover = [&](int k) {
+    if (placed[std::size_t(k)]) return;
+    placed[std::size_t(k)] = 1;
+    const Cover& cv = cover_[std::size_t(k)];
+    for (int i = cv.first; i < cv.first + cv.count; ++i) {
+      const Point p = place(X[slot_link_[std::size_t(k)]], balls_[std::size_t(i)].c);
+      float* const out = ball_centre + 3 * std::size_t(i) * kLanes;
+      lanes::store(out, p.x);
+      lanes::store(out + kLanes, p.y);
+      lanes::store(out + 2 * kLanes, p.z);
+    }
+  };
   unsigned open = valid;  // lanes not yet failed
-  // Robot vs scene: each sphere's lookup, then its chain points for the lanes it leaves.
+  // Robot vs scene: each sphere's lookup, then its cover's balls for the lanes it leaves.
   const ClearanceGrid::Lookup g = model_->clearanceGrid().lookup();
   const float below[3] = {float(g.below[0]), float(g.below[1]), float(g.below[2])};
   const float inv = float(g.inv_size);
   for (const SceneSlot& s : scene_) {
     const unsigned clear = gridClear(g, below, inv, c(s.slot), s.threshold);
-    unsigned left = open & ~clear;
+    const unsigned left = open & ~clear;
     if (!left) continue;
-    if (s.num_chain == 0) {
-      open &= ~left;
-    } else {
-      unsigned all = left;
-      for (int p = s.first_chain; p < s.first_chain + s.num_chain && all; ++p) {
-        const ChainPoint& cp = chain_[std::size_t(p)];
-        all &= gridClear(g, below, inv, place(X[cp.pose_link], cp.c), cp.threshold);
-      }
-      open &= ~(left & ~all);
-    }
+    const Cover& cv = cover_[std::size_t(s.slot)];
+    unsigned all = cv.count > 0 ? left : 0u;
+    if (all) placeCover(s.slot);
+    for (int i = cv.first; i < cv.first + cv.count && all; ++i)
+      all &= gridClear(g, below, inv, ball(i), balls_[std::size_t(i)].threshold);
+    open &= ~(left & ~all);
     if (!open) return 0;
   }
-  // Self pairs: the slot spheres apart, or the pair's table flag set.
-  for (const SelfPair& p : pairs_) {
-    const Point a = c(p.a), b = c(p.b);
+  // Self pairs: the pair's table flag, or the slot spheres apart, or every ball of one cover
+  // apart from the other's sphere or from every ball of its cover.
+  auto apart = [](const Point& a, float ra, const Point& b, float rb) {
     const F8 dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
     const F8 d2 = (dx * dx + dy * dy) + dz * dz;
-    unsigned near = lanes::laneBits(d2 > p.min_sq ? I8{} : I8{} - 1);
+    const float r = ra + rb;
+    return lanes::laneBits(d2 > r * r * (1.0f + 1e-5f) ? I8{} - 1 : I8{});
+  };
+  for (const SelfPair& p : pairs_) {
+    unsigned near =
+        open & ~apart(c(p.a), slot_grown_[std::size_t(p.a)], c(p.b), slot_grown_[std::size_t(p.b)]);
     if (p.table >= 0) near &= ~skip[p.table];
-    open &= ~near;
+    if (!near) continue;
+    // The side with a cover goes ball by ball (a, else b).
+    int a = p.a, b = p.b;
+    if (cover_[std::size_t(a)].count == 0) std::swap(a, b);
+    const Cover& ca = cover_[std::size_t(a)];
+    const Cover& cb = cover_[std::size_t(b)];
+    if (ca.count == 0) {
+      open &= ~near;
+    } else {
+      placeCover(a);
+      if (cb.count > 0) placeCover(b);
+      const Point sb = c(b);
+      const float rb = slot_grown_[std::size_t(b)];
+      unsigned ok = near;
+      for (int i = ca.first; i < ca.first + ca.count && ok; ++i) {
+        const Point bi = ball(i);
+        const float ri = balls_[std::size_t(i)].grown;
+        const unsigned by_sphere = apart(bi, ri, sb, rb);
+        unsigned by_balls = cb.count > 0 ? ok & ~by_sphere : 0u;
+        for (int j = cb.first; j < cb.first + cb.count && by_balls; ++j)
+          by_balls &= apart(bi, ri, ball(j), balls_[std::size_t(j)].grown);
+        ok &= by_sphere | by_balls;
+      }
+      open &= ~(near & ~ok);
+    }
     if (!open) return 0;
   }
   return open;

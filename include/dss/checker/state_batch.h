@@ -51,20 +51,21 @@ class StateBatch {
 
  private:
   struct SceneSlot {
-    int slot;             ///< index into the slots (its centre)
-    int threshold;        ///< cleared when the grid's bound (quanta) exceeds this
-    int first_chain = 0;  ///< into chain_
-    int num_chain = 0;
+    int slot;       ///< index into the slots
+    int threshold;  ///< its sphere is cleared when the grid's bound (quanta) exceeds this
   };
-  struct ChainPoint {
-    int pose_link;
-    float c[3];  ///< in the pose link's frame
-    int threshold;
+  /// A ball of a slot's cover (its elements' chains of balls, sphere_chain.h).
+  struct Ball {
+    float c[3];     ///< in the pose link's frame
+    float grown;    ///< radius + margin + half the self padding, rounded up
+    int threshold;  ///< cleared of the scene when the grid's bound exceeds this
+  };
+  struct Cover {
+    int first = 0, count = 0;  ///< into balls_ (none: the sphere alone)
   };
   struct SelfPair {
-    int a, b;      ///< slots
-    int table;     ///< -1: none
-    float min_sq;  ///< apart when the centres' squared distance exceeds this
+    int a, b;   ///< slots
+    int table;  ///< -1: none
   };
   /// The lanes' work after the per-lane tests: `valid` lanes, the tables' flags (per table, bit
   /// l for lane l).
@@ -80,8 +81,10 @@ class StateBatch {
   KinematicsBatch kin_;
   std::vector<int> slot_link_;      ///< per slot: its pose link
   std::vector<float> slot_center_;  ///< per slot: its centre in the pose link's frame (3)
+  std::vector<float> slot_grown_;   ///< per slot: its radius grown as Ball::grown
+  std::vector<Cover> cover_;        ///< per slot
+  std::vector<Ball> balls_;
   std::vector<SceneSlot> scene_;
-  std::vector<ChainPoint> chain_;
   std::vector<SelfPair> pairs_;
   std::size_t num_links_ = 0;
 };
