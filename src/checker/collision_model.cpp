@@ -174,8 +174,8 @@ void CollisionModel::buildBounds() {
 void CollisionModel::buildSlots() {
   const RobotModel& m = *robot_;
   // The elements' own bounds, computed once per robot (element_shapes_cache.h).
-  const std::shared_ptr<const std::vector<CachedElementShapes>> shapes =
-      cachedElementShapes(robot_);
+  shapes_ = cachedElementShapes(robot_);
+  const std::shared_ptr<const std::vector<CachedElementShapes>>& shapes = shapes_;
   std::size_t next_shape = 0;
   for (std::size_t l = 0; l < m.links.size(); ++l) {
     const RobotLink& link = m.links[l];
@@ -191,6 +191,7 @@ void CollisionModel::buildSlots() {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d hi = -lo;
     for (const auto& ce : link.collisions) {
+      element_shape_.push_back(int(next_shape));
       const ElementShapes& es = shapes->at(next_shape++);
       Element e;
       static_cast<ElementShapes&>(e) = es;

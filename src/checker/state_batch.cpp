@@ -42,7 +42,7 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
     bool tighter = false;
     for (int e = s.first_element; e < s.first_element + s.num_elements; ++e) {
       const CollisionModel::Element& el = elements[std::size_t(e)];
-      const SphereChain chain = sphereChain(el.source->shape, el.box_center_S, el.box_half);
+      const SphereChain& chain = model.elementChain(e);
       for (int i = 0; i < chain.num_points; ++i) {
         balls.push_back({el.X_PS * chain.center_S[i], chain.outer[i]});
         tighter = tighter || chain.outer[i] < s.radius * (1.0 - 1e-6);

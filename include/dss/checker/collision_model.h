@@ -175,6 +175,11 @@ class CollisionModel {
   const std::vector<Element>& elements() const { return elements_; }
   const std::vector<Slot>& slots() const { return slots_; }
   const std::vector<ChainPoint>& chainPoints() const { return chain_; }
+  /// Element e's chain of balls (sphere_chain.h, in its shape frame), whether or not its slot
+  /// keeps it among the chainPoints(): the robot's element cache's (element_shapes_cache.h).
+  const SphereChain& elementChain(int e) const {
+    return (*shapes_)[std::size_t(element_shape_[std::size_t(e)])].chain;
+  }
   const std::vector<SelfPair>& selfPairs() const { return self_pairs_; }
   const SelfPairTables& selfTables() const { return self_tables_; }
   const std::vector<PairBlock>& pairBlocks() const { return pair_blocks_; }
@@ -242,6 +247,8 @@ class CollisionModel {
   std::vector<double> range_lower_, range_upper_, range_held_;
   std::vector<int> quaternions_;  ///< the first value of each quaternion
   std::vector<Element> elements_;
+  std::shared_ptr<const std::vector<CachedElementShapes>> shapes_;  ///< the robot's cache entry
+  std::vector<int> element_shape_;  ///< per element: its index in *shapes_
   std::vector<Slot> slots_;
   std::vector<ChainPoint> chain_;
   std::vector<SelfPair> self_pairs_;
