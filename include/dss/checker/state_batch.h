@@ -6,18 +6,17 @@
 // values, the self-pair tables (none certifies a collision; their free flags skip pairs). Then
 // in float lanes, one state per lane: the pose links' poses (kinematics_batch.h), every slot
 // sphere's centre, the clearance grid's lower bound at each sphere checked against the scene
-// (and at its chain points when the sphere alone is not cleared), and the slot spheres of
-// every self pair the tables leave. A lane is proven free when every sphere checked against
-// the scene is cleared by the grid (or all its chain points are) and every such self pair's
-// spheres are apart, each test grown by margin(), which bounds the float poses' error.
+// (and, where the sphere alone is not cleared, at each ball of the slot's cover: its elements'
+// chains of balls, sphere_chain.h), and for every self pair the tables leave, the two slot
+// spheres (then each ball of one cover against the other slot's sphere or its cover's balls).
+// A lane is proven free when every such test proves its link clear of the obstacles' boxes and
+// every such pair apart, each test grown by margin(), which bounds the float poses' error.
 //
-// Every stage the exact sweep (sweep.h) runs is conservative and these tests are stricter
-// versions of its own first stages, so a state proven free here is one the exact check finds
-// free: its grid lookups and sphere tests clear the same slots and pairs, and any pair it
-// passes on to its later stages is apart by more than the padding (their exact answers are
-// "apart"; only a narrow phase at its iteration cap could answer otherwise, and a pair this
-// far apart does not reach it). States not proven free are left to the exact check: a batch
-// changes no answer.
+// Each test proves the pair it covers apart by more than the padding. Every stage of the exact
+// sweep (sweep.h) is conservative (it reports a collision only where one is proven) and its
+// narrow phase is exact, so the exact check of a state proven free here answers "free" (only a
+// narrow phase at its iteration cap could answer otherwise, and pairs this far apart do not
+// reach it). States not proven free are left to the exact check: a batch changes no answer.
 //
 // Arms only (kinematics_batch.h): a model with a prismatic, planar or floating group joint, or
 // with a base-scene table, proves no lane free (enabled() is false).
