@@ -2,8 +2,9 @@
 // check, with its last valid fraction), their end states and a few clearances on one shared
 // ContinuousMotionChecker and DssChecker (our arm in its shelf scene), each in its own order,
 // and every answer must equal the single-threaded one; the shared counters must add up to
-// exactly four times the single-threaded counts. Run under ThreadSanitizer by
-// tools/sanitize.sh, where any data race in the checkers is a report.
+// exactly four times the single-threaded counts; the same for the vector motion check's
+// batches. Run under ThreadSanitizer by tools/sanitize.sh, where any data race in the checkers
+// is a report.
 #include <array>
 #include <atomic>
 #include <boost/test/unit_test.hpp>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "dss/checker/continuous_motion.h"
+#include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "support/checker_fixtures.h"
 
@@ -102,6 +104,62 @@ BOOST_AUTO_TEST_CASE(four_threads_agree_with_one) {
   BOOST_TEST_MESSAGE("4 threads x " << motions.size() << " motions (" << clear << " clear), "
                                     << single_sub << " sub-motions and " << single.checks
                                     << " state checks each");
+}
+
+// The vector motion check's batches (StateChecker::freeStates) from four threads at once: the
+// same verdicts, last valid fractions and proven lanes as one thread, the counters four times
+// its own.
+BOOST_AUTO_TEST_CASE(four_threads_share_the_batches) {
+  const dss::LoadedRobot robot = dss_test::loadArm();
+  const dss::ModelSetup setup = dss_test::shelfSetup(robot);
+  const auto checker = std::make_shared<const dss::DssChecker>(setup.model);
+  const dss::DiscreteMotionChecker batched(checker, true);
+  const dss::CollisionModel& m = *setup.model;
+  std::mt19937_64 rng(777);
+  std::vector<Motion> motions(160);
+  std::vector<unsigned> proven(motions.size());
+  const auto counters0 = checker->counters();
+  int clear = 0;
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    Motion& mo = motions[i];
+    mo.q0 = dss_test::randomGroupState(m, rng);
+    const std::vector<double> far = dss_test::randomGroupState(m, rng);
+    mo.q1 = mo.q0;
+    for (int a : m.groupActive()) mo.q1[a] = mo.q0[a] + 0.2 * (far[a] - mo.q0[a]);
+    mo.clear = batched.clear(mo.q0.data(), mo.q1.data(), 20, &mo.last_valid);
+    const double* two[2] = {mo.q0.data(), mo.q1.data()};
+    proven[i] = checker->freeStates(two, 2);
+    clear += mo.clear;
+  }
+  const auto single = checker->counters() - counters0;
+  BOOST_TEST(clear > 10);
+  BOOST_TEST(clear < int(motions.size()) - 10);
+  BOOST_TEST(single.batch_free > 0u);
+
+  constexpr int kThreads = 4;
+  const auto counters1 = checker->counters();
+  std::atomic<int> mismatches{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      const std::size_t n = motions.size(), stride = std::array<std::size_t, 4>{1, 3, 7, 9}[t];
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = (t * 40 + k * stride) % n;
+        const Motion& mo = motions[i];
+        double last = -1.0;
+        int bad = batched.clear(mo.q0.data(), mo.q1.data(), 20, &last) != mo.clear;
+        bad += !mo.clear && last != mo.last_valid;
+        const double* two[2] = {mo.q0.data(), mo.q1.data()};
+        bad += checker->freeStates(two, 2) != proven[i];
+        mismatches += bad;
+      }
+    });
+  for (auto& th : threads) th.join();
+  BOOST_TEST(mismatches.load() == 0);
+  const auto multi = checker->counters() - counters1;
+  BOOST_TEST(multi.checks == kThreads * single.checks);
+  BOOST_TEST(multi.batch_free == kThreads * single.batch_free);
+  BOOST_TEST(multi.collisions == kThreads * single.collisions);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
