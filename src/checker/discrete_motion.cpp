@@ -52,6 +52,22 @@ const int* cachedCheckOrder(int n, MotionOrder kind) {
   return order.data();
 }
 
+unsigned freeInterpolated(const StateChecker& checker, const double* a, const double* b, int n,
+                          const int* js, int m) {
+  const std::size_t nq = checker.model().robot().numActiveJoints();
+  thread_local std::vector<double> lanes;
+  if (lanes.size() < nq * kMotionBatch) lanes.resize(nq * kMotionBatch);
+  const double* states[kMotionBatch];
+  m = std::min(m, kMotionBatch);
+  for (int i = 0; i < m; ++i) {
+    double* const qi = lanes.data() + std::size_t(i) * nq;
+    const double t = double(js[i]) / double(n);
+    for (std::size_t k = 0; k < nq; ++k) qi[k] = a[k] + (b[k] - a[k]) * t;
+    states[i] = qi;
+  }
+  return checker.freeStates(states, m);
+}
+
 DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker,
                                              bool batched)
     : checker_(std::move(checker)), batched_(batched) {
@@ -72,18 +88,7 @@ bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segmen
     for (std::size_t k = 0; k < nq; ++k) qs[k] = q0[k] + (q1[k] - q0[k]) * t;
     return !checker.collides(qs);
   };
-  thread_local std::vector<double> lanes;
-  if (lanes.size() < nq * kMotionBatch) lanes.resize(nq * kMotionBatch);
-  auto batch = [&](const int* js, int m) {
-    const double* states[kMotionBatch];
-    for (int i = 0; i < m; ++i) {
-      double* const qi = lanes.data() + std::size_t(i) * nq;
-      const double t = double(js[i]) / double(n);
-      for (std::size_t k = 0; k < nq; ++k) qi[k] = q0[k] + (q1[k] - q0[k]) * t;
-      states[i] = qi;
-    }
-    return checker.freeStates(states, m);
-  };
+  auto batch = [&](const int* js, int m) { return freeInterpolated(checker, q0, q1, n, js, m); };
   if (!last_valid_fraction)
     return batched_ ? motionStatesFreeBatched(n, free, batch, nullptr, kind)
                     : motionStatesFree(n, free, nullptr, kind);

@@ -84,18 +84,7 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
       return !checker.collides(qs);
     };
     if (motion_->batched()) {
-      thread_local std::vector<double> lanes;
-      if (lanes.size() < nq * kMotionBatch) lanes.resize(nq * kMotionBatch);
-      auto batch = [&](const int* js, int m) {
-        const double* states[kMotionBatch];
-        for (int i = 0; i < m; ++i) {
-          double* const qi = lanes.data() + std::size_t(i) * nq;
-          const double t = double(js[i]) / double(n);
-          for (std::size_t k = 0; k < nq; ++k) qi[k] = a[k] + (b[k] - a[k]) * t;
-          states[i] = qi;
-        }
-        return checker.freeStates(states, m);
-      };
+      auto batch = [&](const int* js, int m) { return freeInterpolated(checker, a, b, n, js, m); };
       ok = motionStatesFreeBatched(segments, free, batch, first_colliding, kind);
     } else {
       ok = motionStatesFree(segments, free, first_colliding, kind);

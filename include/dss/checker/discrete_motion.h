@@ -112,6 +112,12 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
   return run(order, probes, n, &at);
 }
 
+/// A batch for motionStatesFreeBatched: states js[0 .. m) (m <= kMotionBatch) of the motion
+/// a -> b at n segments, each value interpolated as OMPL's real vector spaces do (a + (b - a)
+/// j / n), handed to checker.freeStates (per-thread scratch).
+unsigned freeInterpolated(const StateChecker& checker, const double* a, const double* b, int n,
+                          const int* js, int m);
+
 class DiscreteMotionChecker {
  public:
   /// Throws std::invalid_argument for a null checker. `batched`: states decided in batches
