@@ -28,6 +28,23 @@ struct Motion {
   double clearance = -1.0;  // of q0, for every 8th motion
 };
 
+constexpr int kThreads = 4;
+
+// kThreads threads, each through all n motions in its own order (a different start and
+// stride), summing mismatches(i, t) for motion i: the total.
+template <class Mismatches>
+int inFourThreads(std::size_t n, Mismatches&& mismatches) {
+  std::atomic<int> total{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      const std::size_t stride = std::array<std::size_t, kThreads>{1, 3, 7, 9}[t];
+      for (std::size_t k = 0; k < n; ++k) total += mismatches((t * 40 + k * stride) % n);
+    });
+  for (auto& th : threads) th.join();
+  return total.load();
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(concurrent_motion)
@@ -68,29 +85,19 @@ BOOST_AUTO_TEST_CASE(four_threads_agree_with_one) {
   BOOST_TEST(clear < int(motions.size()) - 10);
   BOOST_TEST(free_starts > 10);
 
-  constexpr int kThreads = 4;
   const auto counters1 = checker->counters();
   const auto sub1 = cmc.subMotions(), units1 = cmc.unitTests();
-  std::atomic<int> mismatches{0};
-  std::vector<std::thread> threads;
-  for (int t = 0; t < kThreads; ++t)
-    threads.emplace_back([&, t] {
-      // Each thread its own order: a different start and stride through the motions.
-      const std::size_t n = motions.size(), stride = std::array<std::size_t, 4>{1, 3, 7, 9}[t];
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = (t * 40 + k * stride) % n;
-        const Motion& mo = motions[i];
-        double last = -1.0;
-        int bad = cmc.clear(mo.q0.data(), mo.q1.data(), &last) != mo.clear;
-        bad += !mo.clear && last != mo.last_valid;
-        bad += checker->check(mo.q0.data()) != mo.v0;
-        bad += checker->check(mo.q1.data()) != mo.v1;
-        if (i % 8 == 0) bad += checker->clearance(mo.q0.data()) != mo.clearance;
-        mismatches += bad;
-      }
-    });
-  for (auto& th : threads) th.join();
-  BOOST_TEST(mismatches.load() == 0);
+  const int mismatches = inFourThreads(motions.size(), [&](std::size_t i) {
+    const Motion& mo = motions[i];
+    double last = -1.0;
+    int bad = cmc.clear(mo.q0.data(), mo.q1.data(), &last) != mo.clear;
+    bad += !mo.clear && last != mo.last_valid;
+    bad += checker->check(mo.q0.data()) != mo.v0;
+    bad += checker->check(mo.q1.data()) != mo.v1;
+    if (i % 8 == 0) bad += checker->clearance(mo.q0.data()) != mo.clearance;
+    return bad;
+  });
+  BOOST_TEST(mismatches == 0);
 
   // Every thread did the single-threaded work once: the counters add up exactly.
   const auto multi = checker->counters() - counters1;
@@ -136,26 +143,17 @@ BOOST_AUTO_TEST_CASE(four_threads_share_the_batches) {
   BOOST_TEST(clear < int(motions.size()) - 10);
   BOOST_TEST(single.batch_free > 0u);
 
-  constexpr int kThreads = 4;
   const auto counters1 = checker->counters();
-  std::atomic<int> mismatches{0};
-  std::vector<std::thread> threads;
-  for (int t = 0; t < kThreads; ++t)
-    threads.emplace_back([&, t] {
-      const std::size_t n = motions.size(), stride = std::array<std::size_t, 4>{1, 3, 7, 9}[t];
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = (t * 40 + k * stride) % n;
-        const Motion& mo = motions[i];
-        double last = -1.0;
-        int bad = batched.clear(mo.q0.data(), mo.q1.data(), 20, &last) != mo.clear;
-        bad += !mo.clear && last != mo.last_valid;
-        const double* two[2] = {mo.q0.data(), mo.q1.data()};
-        bad += checker->freeStates(two, 2) != proven[i];
-        mismatches += bad;
-      }
-    });
-  for (auto& th : threads) th.join();
-  BOOST_TEST(mismatches.load() == 0);
+  const int mismatches = inFourThreads(motions.size(), [&](std::size_t i) {
+    const Motion& mo = motions[i];
+    double last = -1.0;
+    int bad = batched.clear(mo.q0.data(), mo.q1.data(), 20, &last) != mo.clear;
+    bad += !mo.clear && last != mo.last_valid;
+    const double* two[2] = {mo.q0.data(), mo.q1.data()};
+    bad += checker->freeStates(two, 2) != proven[i];
+    return bad;
+  });
+  BOOST_TEST(mismatches == 0);
   const auto multi = checker->counters() - counters1;
   BOOST_TEST(multi.checks == kThreads * single.checks);
   BOOST_TEST(multi.batch_free == kThreads * single.batch_free);

@@ -73,13 +73,13 @@ template <class Free, class Batch>
 bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colliding = nullptr,
                              MotionOrder kind = MotionOrder::kEndFirst) {
   int js[kMotionBatch];
-  // The states order[begin, end) except n, batch by batch (those a batch leaves, in batch
-  // order), n where it comes: the first colliding one in *at.
-  auto run = [&](const int* order, int begin, int end, int* at) {
+  // The states order(k) for k in [begin, end) except n, batch by batch (those a batch leaves,
+  // in batch order), n where it comes: the first colliding one in *at.
+  auto run = [&](auto&& order, int begin, int end, int* at) {
     int k = begin;
     while (k < end) {
       int m = 0, stop = k;
-      while (stop < end && m < kMotionBatch && order[stop] != n) js[m++] = order[stop++];
+      while (stop < end && m < kMotionBatch && order(stop) != n) js[m++] = order(stop++);
       if (m >= kMotionMinBatch) {
         const unsigned proven = batch(js, m);
         for (int i = 0; i < m; ++i)
@@ -89,7 +89,7 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
           if (!free(js[i])) return *at = js[i], false;
       }
       k = stop;
-      if (k < end && order[k] == n) {
+      if (k < end && order(k) == n) {
         if (!free(n)) return *at = n, false;
         ++k;
       }
@@ -97,11 +97,8 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
     return true;
   };
   int at = 0;
-  if (first_colliding) {
-    thread_local std::vector<int> in_order;
-    in_order.resize(std::size_t(n > 0 ? n : 0));
-    for (int j = 1; j <= n; ++j) in_order[std::size_t(j - 1)] = j;
-    const bool ok = run(in_order.data(), 0, n, &at);
+  if (first_colliding) {  // in order from state 1
+    const bool ok = run([](int k) { return k + 1; }, 0, n, &at);
     *first_colliding = ok ? n + 1 : at;
     return ok;
   }
@@ -109,7 +106,7 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
   const int probes = n < kMotionProbes ? n : kMotionProbes;
   for (int k = 0; k < probes; ++k)
     if (!free(order[k])) return false;
-  return run(order, probes, n, &at);
+  return run([order](int k) { return order[k]; }, probes, n, &at);
 }
 
 /// A batch for motionStatesFreeBatched: states js[0 .. m) (m <= kMotionBatch) of the motion

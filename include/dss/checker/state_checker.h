@@ -33,10 +33,7 @@ class StateChecker {
     if (!timed_) return decide(q, c);
     const auto t0 = std::chrono::steady_clock::now();
     const StateVerdict v = decide(q, c);
-    const auto ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
-            .count();
-    c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
+    addTimeSince(t0, c);
     return v;
   }
   /// Up to kBatchLanes states at once (the states of a motion): bit l set when state q[l] is
@@ -49,12 +46,7 @@ class StateChecker {
     const auto t0 =
         timed_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
     const unsigned free = provenFree(q, n);
-    if (timed_) {
-      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                          std::chrono::steady_clock::now() - t0)
-                          .count();
-      c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
-    }
+    if (timed_) addTimeSince(t0, c);
     if (free) {
       const auto k = static_cast<std::uint64_t>(__builtin_popcount(free));
       c.add(c.checks, k);
@@ -84,6 +76,13 @@ class StateChecker {
   CounterSlots::Slot& counterSlot() const { return counters_.local(); }
 
  private:
+  /// The wall time since t0 added to the counters' checking time.
+  static void addTimeSince(std::chrono::steady_clock::time_point t0, CounterSlots::Slot& c) {
+    const auto ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+            .count();
+    c.add(c.checking_ns, static_cast<std::uint64_t>(ns));
+  }
   StateVerdict decide(const double* q, CounterSlots::Slot& c) const {
     if (!model_->withinBounds(q)) {
       c.add(c.invalid_input);
