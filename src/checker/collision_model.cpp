@@ -138,6 +138,43 @@ bool CollisionModel::withinBounds(const double* q) const {
   return true;
 }
 
+unsigned CollisionModel::boundedHeldLanes(const double* qs) const {
+  constexpr int kLanes = 8;
+  const std::size_t n = range_lower_.size();
+  // Lanes by pairs, the same comparisons as withinBounds (false for NaN); a joint outside the
+  // group also equal to its held value.
+  __m128d ok[kLanes / 2];
+  for (__m128d& o : ok) o = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  std::size_t held = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    const __m128d lo = _mm_set1_pd(range_lower_[a]), hi = _mm_set1_pd(range_upper_[a]),
+                  h = _mm_set1_pd(range_held_[a]);
+    const bool match = held < held_active_.size() && held_active_[held] == int(a);
+    const __m128d held_value = _mm_set1_pd(held_[a]);
+    held += match;
+    for (int p = 0; p < kLanes / 2; ++p) {
+      const __m128d v = _mm_loadu_pd(qs + a * kLanes + 2 * p);
+      __m128d in =
+          _mm_or_pd(_mm_and_pd(_mm_cmpge_pd(v, lo), _mm_cmple_pd(v, hi)), _mm_cmpeq_pd(v, h));
+      if (match) in = _mm_and_pd(in, _mm_cmpeq_pd(v, held_value));
+      ok[p] = _mm_and_pd(ok[p], in);
+    }
+  }
+  unsigned bits = 0;
+  for (int p = 0; p < kLanes / 2; ++p) bits |= unsigned(_mm_movemask_pd(ok[p])) << (2 * p);
+  if (quaternions_.empty()) return bits;
+  // Quaternion norms per lane.
+  double q[kLanes][4];
+  for (int l = 0; l < kLanes; ++l) {
+    if (!((bits >> l) & 1u)) continue;
+    for (const int a : quaternions_) {
+      for (int k = 0; k < 4; ++k) q[l][k] = qs[(std::size_t(a) + std::size_t(k)) * kLanes + l];
+      if (!quaternionNormValid(q[l][0], q[l][1], q[l][2], q[l][3])) bits &= ~(1u << l);
+    }
+  }
+  return bits;
+}
+
 void CollisionModel::buildBounds() {
   const RobotModel& m = *robot_;
   constexpr double kMax = std::numeric_limits<double>::max();

@@ -97,16 +97,20 @@ unsigned StateBatch::freeLanes(const double* const* q, int n, SimdPath path) con
   if (skip.size() < tables) skip.resize(tables);
   if (lane_skip.size() < tables) lane_skip.resize(tables);
   std::fill(skip.begin(), skip.begin() + static_cast<std::ptrdiff_t>(tables), 0u);
-  // The per-lane tests in double, as the checker runs them; the lanes' values transposed
-  // (lanes past n repeat the first state).
-  unsigned valid = 0;
+  // The lanes' values transposed (lanes past n repeat the first state), then the per-lane
+  // tests in double, as the checker runs them.
   for (int l = 0; l < kLanes; ++l) {
     const double* ql = q[l < n ? l : 0];
     for (std::size_t j = 0; j < nq; ++j) qs[j * kLanes + std::size_t(l)] = ql[j];
-    if (l >= n || !m.withinBounds(ql) || !m.heldMatch(ql)) continue;
-    if (m.selfTables().read(ql, true, self_padding_, lane_skip.data())) continue;
+  }
+  unsigned valid = m.boundedHeldLanes(qs.data()) & ((1u << n) - 1u);
+  for (unsigned left = valid; left; left &= left - 1) {
+    const int l = __builtin_ctz(left);
+    if (m.selfTables().read(q[l], true, self_padding_, lane_skip.data())) {
+      valid &= ~(1u << l);
+      continue;
+    }
     for (std::size_t t = 0; t < tables; ++t) skip[t] |= unsigned(lane_skip[t] != 0) << l;
-    valid |= 1u << l;
   }
   if (!valid) return 0;
   return valid & provenFree(qs.data(), valid, skip.data(), path);

@@ -21,6 +21,11 @@ KinematicsBatch::KinematicsBatch(const Kinematics& kin) : updated_(kin.updated_)
       for (int i = 0; i < 3; ++i) b.m[k][i] = static_cast<float>(s.m[k][i]);
     b.link = s.link;
     b.ref = s.ref;
+    b.perm = s.perm;
+    for (int j = 0; j < 3; ++j) {
+      b.col[j] = s.col[j];
+      b.negate[j] = s.sign[j] < 0.0;
+    }
     reach += std::sqrt(s.m[3][0] * s.m[3][0] + s.m[3][1] * s.m[3][1] + s.m[3][2] * s.m[3][2]);
     if (s.num_shifts > 0) supported_ = false;
     using M = Kinematics::Motion;
@@ -139,11 +144,20 @@ __attribute__((always_inline)) inline void KinematicsBatch::run(const double* q,
       for (int e = 0; e < 12; ++e) a[e / 3][e % 3] = lanes::load(A.v[e]);
     }
     F8 c[4][3];
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i)
-        c[j][i] = a[0][i] * s.m[j][0] + a[1][i] * s.m[j][1] + a[2][i] * s.m[j][2];
-    for (int i = 0; i < 3; ++i)
-      c[3][i] = ((a[3][i] + a[0][i] * s.m[3][0]) + a[1][i] * s.m[3][1]) + a[2][i] * s.m[3][2];
+    if (s.perm) {
+      // A signed permutation (kinematics.h): columns selected, no product.
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) c[j][i] = s.negate[j] ? -a[s.col[j]][i] : a[s.col[j]][i];
+    } else {
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+          c[j][i] = a[0][i] * s.m[j][0] + a[1][i] * s.m[j][1] + a[2][i] * s.m[j][2];
+    }
+    // The translation's zero terms left out: adding a zero product leaves a finite sum as it is.
+    for (int i = 0; i < 3; ++i) c[3][i] = a[3][i];
+    for (int k = 0; k < 3; ++k)
+      if (s.m[3][k] != 0.0f)
+        for (int i = 0; i < 3; ++i) c[3][i] = c[3][i] + a[k][i] * s.m[3][k];
     if (s.motion != 0) {
       reduceAngles(q + s.q_index * kLanes, s.multiplier, s.offset, r, k);
       F8 sn, cs;

@@ -297,4 +297,57 @@ BOOST_AUTO_TEST_CASE(invalid_states_have_no_clearance_and_no_clear_motion) {
   }
 }
 
+// Eight states at once (CollisionModel::boundedHeldLanes, the batches' first test): bit l is
+// withinBounds && heldMatch of state l, on lanes drawn from the limits, one ulp beyond them,
+// held values, non-finite values and quaternions without direction (seeded).
+BOOST_AUTO_TEST_CASE(bounded_held_lanes_are_within_bounds_and_held_match_per_state) {
+  const HeldOutside f;
+  const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_free_flyer";
+  dss::LoadedRobot flyer =
+      dss::loadRobot(dir + "/dss_free_flyer.urdf", dir + "/dss_free_flyer.srdf");
+  flyer = dss::withWorkspace(flyer, Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+  const dss::CollisionModel flyer_model(flyer.model, &*flyer.srdf, dss::Scene{}, {},
+                                        flyer.model->defaultState());
+  std::mt19937_64 rng(7);
+  for (const dss::CollisionModel* m : {f.model.get(), f.all_group.get(), &flyer_model}) {
+    const dss::RobotModel& robot = m->robot();
+    const std::size_t nq = robot.numActiveJoints();
+    int passed = 0, failed = 0;
+    for (int round = 0; round < 400; ++round) {
+      std::vector<std::vector<double>> states(8, m->held());
+      std::vector<double> lanes(nq * 8);
+      for (int l = 0; l < 8; ++l) {
+        for (std::size_t a = 0; a < nq; ++a) {
+          const dss::RobotJoint& j = robot.joints[robot.active_joints[a]];
+          const double lo = std::max(j.limits.lower, -2.0), hi = std::min(j.limits.upper, 2.0);
+          // Mostly valid values, so that whole lanes pass; one in five a limit, one ulp
+          // beyond one, the held value or a non-finite value.
+          const double odd[] = {lo,
+                                hi,
+                                std::nextafter(lo, -kInf),
+                                std::nextafter(hi, kInf),
+                                kNan,
+                                kInf,
+                                m->held()[a],
+                                m->held()[a]};
+          const std::size_t pick = rng() % 40;
+          states[l][a] = pick < 8 ? odd[pick] : lo + (hi - lo) * double(rng() % 1000) / 999.0;
+        }
+        if (m == &flyer_model && rng() % 8 == 0)  // a quaternion without direction
+          for (std::size_t k = 3; k < 7; ++k) states[l][k] = 0.0;
+        for (std::size_t a = 0; a < nq; ++a) lanes[a * 8 + std::size_t(l)] = states[l][a];
+      }
+      const unsigned bits = m->boundedHeldLanes(lanes.data());
+      for (int l = 0; l < 8; ++l) {
+        const bool expect = m->withinBounds(states[l].data()) && m->heldMatch(states[l].data());
+        BOOST_TEST(((bits >> l) & 1u) == unsigned(expect), "round " << round << " lane " << l);
+        (expect ? passed : failed) += 1;
+      }
+    }
+    // Both answers were asked for.
+    BOOST_TEST(passed > 100);
+    BOOST_TEST(failed > 100);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -168,6 +168,9 @@ class CollisionModel {
   /// kMinQuaternionNorm (multi_dof.h), and a multi-DOF joint that the group does not move
   /// (the Panda's floating virtual joint) must be at its held values.
   bool withinBounds(const double* q) const;
+  /// withinBounds() and heldMatch() of eight states at once, value j of state l at qs[8 j + l]:
+  /// bit l set when state l passes both.
+  unsigned boundedHeldLanes(const double* qs) const;
 
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
   const std::vector<int>& groupActive() const { return group_active_; }

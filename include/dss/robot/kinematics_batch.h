@@ -48,7 +48,10 @@ class KinematicsBatch {
 
  private:
   struct Step {
-    float m[4][3];  ///< the constant frame, as Kinematics::Step::m
+    float m[4][3];      ///< the constant frame, as Kinematics::Step::m
+    bool perm = false;  ///< its rotation a signed permutation: column j is +-column col[j]
+    int col[3] = {0, 1, 2};
+    bool negate[3] = {false, false, false};
     int link = -1;
     int ref = -1;  ///< -1: the base pose
     /// 0: fixed; 1, 2, 3: rotation about x, y, z; 4: about `axis`
