@@ -67,6 +67,24 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
   const auto grown = [&](double r) {
     return static_cast<float>((r + margin_ + 0.5 * self_padding) * (1.0 + 1e-6));
   };
+  // The oriented boxes of the obstacles of each slot checked against the scene (at most
+  // kMaxBoxes: beyond that the grid alone), and the float roundings of a point's distance to
+  // one: a few per coordinate of the point, the box's centre and its extent.
+  constexpr std::size_t kMaxBoxes = 16;
+  const std::vector<Obb>& obbs = model.obstacleObbs();
+  double world = 0.0;
+  for (const auto& s : slots)
+    if (s.obstacles.size() <= kMaxBoxes)
+      for (int o : s.obstacles) {
+        const Obb& b = obbs[std::size_t(o)];
+        world = std::max(world, b.c.norm() + b.h.sum());
+      }
+  const double box_slack = 32.0 * u * (2.0 * world + 1.0);
+  // The squared distance beyond which a ball of radius r is clear of a box, rounded up.
+  const auto reach2 = [&](double r) {
+    const double d = r + scene_padding + margin_ + box_slack;
+    return static_cast<float>(d * d * (1.0 + 1e-5));
+  };
   for (std::size_t k = 0; k < slots.size(); ++k) {
     const auto& s = slots[k];
     slot_link_.push_back(s.pose_link);
@@ -76,10 +94,27 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
     for (const RawBall& b : covers[k])
       balls_.push_back({{float(b.c.x()), float(b.c.y()), float(b.c.z())},
                         grown(b.r),
-                        gridThreshold(b.r + scene_padding + margin_)});
+                        gridThreshold(b.r + scene_padding + margin_),
+                        reach2(b.r)});
     cover_.push_back(cover);
-    if (!s.obstacles.empty())  // checked against the scene
-      scene_.push_back({static_cast<int>(k), gridThreshold(s.radius + scene_padding + margin_)});
+    if (s.obstacles.empty()) continue;  // not checked against the scene
+    SceneSlot scene{static_cast<int>(k), gridThreshold(s.radius + scene_padding + margin_),
+                    reach2(s.radius)};
+    if (s.obstacles.size() <= kMaxBoxes) {
+      scene.first_box = static_cast<int>(boxes_.size());
+      scene.num_boxes = static_cast<int>(s.obstacles.size());
+      for (int o : s.obstacles) {
+        const Obb& b = obbs[std::size_t(o)];
+        Box f;
+        for (int j = 0; j < 3; ++j) {
+          for (int i = 0; i < 3; ++i) f.r[3 * j + i] = static_cast<float>(b.R(i, j));
+          f.c[j] = static_cast<float>(b.c[j]);
+          f.h[j] = static_cast<float>(b.h[j]);
+        }
+        boxes_.push_back(f);
+      }
+    }
+    scene_.push_back(scene);
   }
   for (const auto& p : model.selfPairs()) pairs_.push_back({p.a, p.b, p.table});
 }
@@ -170,6 +205,26 @@ __attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lo
     clear |= unsigned(((in >> l) & 1u) && g.bound[at[l]] > threshold) << l;
   return clear;
 }
+// The lanes where point c is farther than sqrt(reach2) from every box of boxes[0, count)
+// (never for NaN).
+template <class Box>
+__attribute__((always_inline)) inline unsigned boxesClear(const Box* boxes, int count,
+                                                          const Point& c, float reach2) {
+  I8 clear = I8{} - 1;
+  for (int b = 0; b < count; ++b) {
+    const Box& x = boxes[b];
+    const F8 dx = c.x - x.c[0], dy = c.y - x.c[1], dz = c.z - x.c[2];
+    F8 d2 = F8{};
+    for (int j = 0; j < 3; ++j) {
+      const F8 l = (dx * x.r[3 * j] + dy * x.r[3 * j + 1]) + dz * x.r[3 * j + 2];
+      F8 e = (l < 0.0f ? -l : l) - x.h[j];
+      e = e < 0.0f ? F8{} : e;  // NaN stays NaN
+      d2 = d2 + e * e;
+    }
+    clear &= d2 > reach2;
+  }
+  return lanes::laneBits(clear);
+}
 }  // namespace
 
 __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs, unsigned valid,
@@ -222,14 +277,22 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
   const float below[3] = {float(g.below[0]), float(g.below[1]), float(g.below[2])};
   const float inv = float(g.inv_size);
   for (const SceneSlot& s : scene_) {
-    const unsigned clear = gridClear(g, below, inv, c(s.slot), s.threshold);
-    const unsigned left = open & ~clear;
+    const Point sc = c(s.slot);
+    unsigned left = open & ~gridClear(g, below, inv, sc, s.threshold);
+    if (!left) continue;
+    const Box* const boxes = boxes_.data() + s.first_box;
+    if (s.num_boxes > 0) left &= ~boxesClear(boxes, s.num_boxes, sc, s.reach2);
     if (!left) continue;
     const Cover& cv = cover_[std::size_t(s.slot)];
     unsigned all = cv.count > 0 ? left : 0u;
     if (all) placeCover(s.slot);
-    for (int i = cv.first; i < cv.first + cv.count && all; ++i)
-      all &= gridClear(g, below, inv, ball(i), balls_[std::size_t(i)].threshold);
+    for (int i = cv.first; i < cv.first + cv.count && all; ++i) {
+      const Ball& b = balls_[std::size_t(i)];
+      const Point bc = ball(i);
+      unsigned ok = gridClear(g, below, inv, bc, b.threshold);
+      if ((all & ~ok) && s.num_boxes > 0) ok |= boxesClear(boxes, s.num_boxes, bc, b.reach2);
+      all &= ok;
+    }
     open &= ~(left & ~all);
     if (!open) return 0;
   }

@@ -2,15 +2,19 @@
 // which of them the cheap stages prove free, in float lanes, so that only the others need the
 // exact check.
 //
-// Per lane, in double as the checkers do: the model's bounds, the held joints at their held
-// values, the self-pair tables (none certifies a collision; their free flags skip pairs). Then
-// in float lanes, one state per lane: the pose links' poses (kinematics_batch.h), every slot
-// sphere's centre, the clearance grid's lower bound at each sphere checked against the scene
-// (and, where the sphere alone is not cleared, at each ball of the slot's cover: its elements'
-// chains of balls, sphere_chain.h), and for every self pair the tables leave, the two slot
-// spheres (then each ball of one cover against the other slot's sphere or its cover's balls).
+// In double as the checkers do: the model's bounds and the held joints at their held values
+// (CollisionModel::boundedHeldLanes), then per lane the self-pair tables (none certifies a
+// collision; their free flags skip pairs). Then in float lanes, one state per lane: the pose
+// links' poses (kinematics_batch.h), every slot sphere's centre, the clearance grid's lower bound
+// at each sphere checked against the scene, then where the grid does not clear it its distance
+// to each of its obstacles' oriented boxes (slots with at most 16 obstacles), and where the
+// sphere alone is not cleared the same two tests for each ball of the slot's cover (its
+// elements' chains of balls, sphere_chain.h); and for every self pair the tables leave, the two
+// slot spheres (then each ball of one cover against the other slot's sphere or its cover's
+// balls).
 // A lane is proven free when every such test proves its link clear of the obstacles' boxes and
-// every such pair apart, each test grown by margin(), which bounds the float poses' error.
+// every such pair apart, each test grown by margin(), which bounds the float poses' error (and
+// the box distances by the roundings of the boxes' float coordinates).
 //
 // Each test proves the pair it covers apart by more than the padding. Every stage of the exact
 // sweep (sweep.h) is conservative (it reports a collision only where one is proven) and its
@@ -52,12 +56,21 @@ class StateBatch {
   struct SceneSlot {
     int slot;       ///< index into the slots
     int threshold;  ///< its sphere is cleared when the grid's bound (quanta) exceeds this
+    float reach2;   ///< its sphere is clear of an oriented box beyond this squared distance
+    int first_box = 0, num_boxes = 0;  ///< its obstacles' oriented boxes, into boxes_
+  };
+  /// An obstacle's oriented box in float (obb.h): a point p is at distance
+  /// |max(|R^T (p - c)| - h, 0)| from it.
+  struct Box {
+    float r[9];  ///< R column by column
+    float c[3], h[3];
   };
   /// A ball of a slot's cover (its elements' chains of balls, sphere_chain.h).
   struct Ball {
     float c[3];     ///< in the pose link's frame
     float grown;    ///< radius + margin + half the self padding, rounded up
     int threshold;  ///< cleared of the scene when the grid's bound exceeds this
+    float reach2;   ///< clear of an oriented box beyond this squared distance
   };
   struct Cover {
     int first = 0, count = 0;  ///< into balls_ (none: the sphere alone)
@@ -84,6 +97,7 @@ class StateBatch {
   std::vector<Cover> cover_;        ///< per slot
   std::vector<Ball> balls_;
   std::vector<SceneSlot> scene_;
+  std::vector<Box> boxes_;
   std::vector<SelfPair> pairs_;
   std::size_t num_links_ = 0;
 };
