@@ -54,18 +54,23 @@ const int* cachedCheckOrder(int n, MotionOrder kind) {
 
 unsigned freeInterpolated(const StateChecker& checker, const double* a, const double* b, int n,
                           const int* js, int m) {
+  constexpr int kLanes = StateChecker::kBatchLanes;
+  static_assert(kMotionBatch <= kLanes, "a batch fits the checker's lanes");
   const std::size_t nq = checker.model().robot().numActiveJoints();
   thread_local std::vector<double> lanes;
-  if (lanes.size() < nq * kMotionBatch) lanes.resize(nq * kMotionBatch);
-  const double* states[kMotionBatch];
+  if (lanes.size() < nq * kLanes) lanes.resize(nq * kLanes);
   m = std::min(m, kMotionBatch);
-  for (int i = 0; i < m; ++i) {
-    double* const qi = lanes.data() + std::size_t(i) * nq;
-    const double t = double(js[i]) / double(n);
-    for (std::size_t k = 0; k < nq; ++k) qi[k] = a[k] + (b[k] - a[k]) * t;
-    states[i] = qi;
+  if (m <= 0) return 0;
+  // Value by value, each state's value as the one-by-one check computes it; lanes past m
+  // repeat the first state.
+  double t[kLanes];
+  for (int i = 0; i < kLanes; ++i) t[i] = double(js[i < m ? i : 0]) / double(n);
+  for (std::size_t k = 0; k < nq; ++k) {
+    double* const v = lanes.data() + k * kLanes;
+    const double ak = a[k], dk = b[k] - a[k];
+    for (int i = 0; i < kLanes; ++i) v[i] = ak + dk * t[i];
   }
-  return checker.freeStates(states, m);
+  return checker.freeLanes(lanes.data(), m);
 }
 
 DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker,

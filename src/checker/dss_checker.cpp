@@ -32,8 +32,8 @@ DssChecker::DssChecker(std::shared_ptr<const CollisionModel> model, const Settin
       settings_(settings),
       batch_(this->model(), settings.scene_padding, settings.self_padding) {}
 
-unsigned DssChecker::provenFree(const double* const* q, int n) const {
-  return batch_.freeLanes(q, n, batch_path_);
+unsigned DssChecker::provenFree(const double* lanes, int n) const {
+  return batch_.freeTransposed(lanes, n, batch_path_);
 }
 
 bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) const {

@@ -235,6 +235,29 @@ bool SelfPairTables::read(const double* q, bool held_match, double self_padding,
   return false;
 }
 
+unsigned SelfPairTables::readLanes(const double* lanes, unsigned states, double self_padding,
+                                   unsigned* skip) const {
+  constexpr int kLanes = 8;
+  const bool use_colliding = self_padding >= padding_, use_free = self_padding <= padding_;
+  unsigned colliding_states = 0;
+  for (const Group& g : groups_) {
+    const SelfPairTable& t = tables_[std::size_t(g.first)];
+    unsigned free_bits[4] = {0, 0, 0, 0};  // per table of the group, bit l for state l
+    for (unsigned left = states; left; left &= left - 1) {
+      const int l = __builtin_ctz(left);
+      double v[2];
+      for (int k = 0; k < t.num_vars; ++k) v[k] = lanes[std::size_t(t.var[k]) * kLanes + l];
+      const int idx = t.indexOf(v);
+      const unsigned byte = idx < 0 ? 0u : g.packed[std::size_t(idx)];
+      if (use_colliding && colliding(byte)) colliding_states |= 1u << l;
+      const unsigned f = use_free ? free(byte) : 0u;
+      for (int k = 0; k < g.count; ++k) free_bits[k] |= ((f >> (2 * k)) & 1u) << l;
+    }
+    for (int k = 0; k < g.count; ++k) skip[g.first + k] |= free_bits[k];
+  }
+  return colliding_states;
+}
+
 unsigned SelfPairTables::walkFree(const Group& g, const double* a, const double* b, bool fine,
                                   unsigned mask) const {
   const SelfPairTable& tb = tables_[std::size_t(g.first)];

@@ -122,33 +122,32 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
 unsigned StateBatch::freeLanes(const double* const* q, int n, SimdPath path) const {
   if (!enabled_ || n <= 0 || path == SimdPath::kScalar) return 0;
   n = std::min(n, kLanes);
-  const CollisionModel& m = *model_;
-  const std::size_t nq = m.robot().numActiveJoints();
-  const std::size_t tables = m.selfTables().size();
+  const std::size_t nq = model_->robot().numActiveJoints();
   thread_local std::vector<double> qs;
-  thread_local std::vector<unsigned char> lane_skip;
-  thread_local std::vector<unsigned> skip;  // per table, bit l: lane l's flag
   if (qs.size() < nq * kLanes) qs.resize(nq * kLanes);
-  if (skip.size() < tables) skip.resize(tables);
-  if (lane_skip.size() < tables) lane_skip.resize(tables);
-  std::fill(skip.begin(), skip.begin() + static_cast<std::ptrdiff_t>(tables), 0u);
-  // The lanes' values transposed (lanes past n repeat the first state), then the per-lane
-  // tests in double, as the checker runs them.
+  // Lanes past n repeat the first state.
   for (int l = 0; l < kLanes; ++l) {
     const double* ql = q[l < n ? l : 0];
     for (std::size_t j = 0; j < nq; ++j) qs[j * kLanes + std::size_t(l)] = ql[j];
   }
-  unsigned valid = m.boundedHeldLanes(qs.data()) & ((1u << n) - 1u);
-  for (unsigned left = valid; left; left &= left - 1) {
-    const int l = __builtin_ctz(left);
-    if (m.selfTables().read(q[l], true, self_padding_, lane_skip.data())) {
-      valid &= ~(1u << l);
-      continue;
-    }
-    for (std::size_t t = 0; t < tables; ++t) skip[t] |= unsigned(lane_skip[t] != 0) << l;
-  }
+  return freeTransposed(qs.data(), n, path);
+}
+
+unsigned StateBatch::freeTransposed(const double* lanes, int n, SimdPath path) const {
+  if (!enabled_ || n <= 0 || path == SimdPath::kScalar) return 0;
+  n = std::min(n, kLanes);
+  const CollisionModel& m = *model_;
+  // The tests in double, as the checker runs them: bounds and held joints, then the tables
+  // (per table, bit l: lane l's free flag).
+  unsigned valid = m.boundedHeldLanes(lanes) & ((1u << n) - 1u);
   if (!valid) return 0;
-  return valid & provenFree(qs.data(), valid, skip.data(), path);
+  const std::size_t tables = m.selfTables().size();
+  thread_local std::vector<unsigned> skip;
+  if (skip.size() < tables) skip.resize(tables);
+  std::fill(skip.begin(), skip.begin() + static_cast<std::ptrdiff_t>(tables), 0u);
+  valid &= ~m.selfTables().readLanes(lanes, valid, self_padding_, skip.data());
+  if (!valid) return 0;
+  return valid & provenFree(lanes, valid, skip.data(), path);
 }
 
 unsigned StateBatch::provenFree(const double* qs, unsigned valid, const unsigned* skip,

@@ -183,9 +183,78 @@ void checkFreeAlong(const dss::CollisionModel& m, std::uint64_t seed) {
                                    << " states checked), " << refused << " not");
 }
 
+// readLanes on batches of eight seeded random states (at the held values; now and then a value
+// beyond its range or NaN) gives each state of the batch what read gives it: the same
+// certified collision, and for the others the same free flag per table, at paddings below, at
+// and above the tables'. Returns the free flags compared set.
+std::size_t checkReadLanes(const dss::CollisionModel& m, unsigned seed) {
+  const dss::SelfPairTables& tables = m.selfTables();
+  const dss::RobotModel& robot = m.robot();
+  const std::size_t nq = robot.numActiveJoints();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t flags = 0, colliding = 0;
+  std::vector<unsigned char> skip_one(tables.size());
+  std::vector<unsigned> skip(tables.size());
+  for (double padding : {0.0, tables.padding(), tables.padding() + 0.01}) {
+    for (int round = 0; round < 500; ++round) {
+      std::vector<std::vector<double>> q(8, m.held());
+      std::vector<double> lanes(nq * 8);
+      for (int l = 0; l < 8; ++l) {
+        for (int a : m.groupActive()) {
+          const dss::RobotJoint& j = robot.joints[robot.active_joints[a]];
+          const double r = unit(rng);
+          q[l][a] = r < 0.02   ? std::numeric_limits<double>::quiet_NaN()
+                    : r < 0.05 ? j.limits.upper + 0.5
+                               : j.limits.lower + (j.limits.upper - j.limits.lower) * unit(rng);
+        }
+        for (std::size_t a = 0; a < nq; ++a) lanes[a * 8 + std::size_t(l)] = q[l][a];
+      }
+      const unsigned states = unsigned(rng() & 0xFFu);
+      std::fill(skip.begin(), skip.end(), 0u);
+      const unsigned hit = tables.readLanes(lanes.data(), states, padding, skip.data());
+      BOOST_TEST((hit & ~states) == 0u);
+      for (int l = 0; l < 8; ++l) {
+        if (!((states >> l) & 1u)) {
+          for (unsigned s : skip) BOOST_TEST(((s >> l) & 1u) == 0u);
+          continue;
+        }
+        const bool collides = tables.read(q[l].data(), true, padding, skip_one.data());
+        BOOST_TEST(((hit >> l) & 1u) == unsigned(collides), "round " << round << " lane " << l);
+        colliding += collides;
+        if (collides) continue;
+        for (std::size_t t = 0; t < tables.size(); ++t) {
+          BOOST_TEST(((skip[t] >> l) & 1u) == unsigned(skip_one[t] != 0), "table " << t);
+          flags += skip_one[t] != 0;
+        }
+      }
+    }
+  }
+  BOOST_TEST(colliding > 0u);
+  return flags;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(self_pair_tables)
+
+BOOST_AUTO_TEST_CASE(own_arm_tables_read_in_lanes_as_one_by_one) {
+  const auto robot = dss::loadRobot(kArm + "/dss_arm7.urdf", kArm + "/dss_arm7.srdf");
+  const auto req = dss::loadPlanRequestYaml(kArm + "/scenes/shelf_request.yaml");
+  const dss::ModelSetup p = dss::setupModel(robot, dss::loadScene(kArm + "/scenes/shelf.yaml"),
+                                            req.group_name, req.startState());
+  BOOST_REQUIRE(p.model->selfTables().size() > 0u);
+  BOOST_TEST(checkReadLanes(*p.model, 5) > 1000u);
+}
+
+BOOST_AUTO_TEST_CASE(panda_tables_read_in_lanes_as_one_by_one, DSS_NEEDS_SHARED) {
+  BOOST_REQUIRE(fs::exists(kPanda + "/panda.urdf"));
+  const auto robot = dss::loadRobot(kPanda + "/panda.urdf", kPanda + "/panda.srdf");
+  const dss::ModelSetup p =
+      dss::setupModel(robot, dss::loadScene(kMbm + "/box/scene0001.yaml"), "", {});
+  BOOST_REQUIRE(p.model->selfTables().size() > 0u);
+  BOOST_TEST(checkReadLanes(*p.model, 6) > 1000u);
+}
 
 BOOST_AUTO_TEST_CASE(lookup_wraps_and_refuses_nan_inf_and_out_of_range) {
   dss::SelfPairTable t;

@@ -61,7 +61,7 @@ class DssChecker : public StateChecker {
  private:
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;
   /// The batch's lanes proven free (state_batch.h).
-  unsigned provenFree(const double* const* q, int n) const override;
+  unsigned provenFree(const double* lanes, int n) const override;
   /// The sweep at these paddings for a state whose poses are in X_WL (the pose links with
   /// `pose_links`, else every slot's own link); `skip`: the tables' flags for the state.
   /// `base_free`: the base-scene table's bits for the state (none by default).

@@ -62,9 +62,15 @@ struct SelfPairTable {
   }
   /// The cell index of q (row-major), or -1 outside the range or for NaN.
   int index(const double* q) const {
+    double v[2];
+    for (int k = 0; k < num_vars; ++k) v[k] = q[var[k]];
+    return indexOf(v);
+  }
+  /// The same, from the variables' values (values[k]: active joint var[k]).
+  int indexOf(const double* values) const {
     int idx = 0;
     for (int k = 0; k < num_vars; ++k) {
-      double v = q[var[k]];
+      double v = values[k];
       if (wrap[k]) v -= 6.283185307179586 * std::floor((v + 3.141592653589793) / 6.283185307179586);
       if (!(v >= lo[k] && v <= hi[k])) return -1;
       int i = static_cast<int>((v - lo[k]) * inv_width[k]);
@@ -122,6 +128,12 @@ class SelfPairTables {
   /// only (`colliding_cells` false): a collision of the hulls is not one of the meshes.
   bool read(const double* q, bool held_match, double self_padding, unsigned char* skip,
             bool colliding_cells = true) const;
+  /// read() for the states of a batch, each at the held values, value j of state l at
+  /// lanes[8 j + l], for the states l with bit l of `states` set: returns the states a table
+  /// certifies colliding; for the others, bit l of skip[t] is set when table t certifies its
+  /// pair free (skip[t] is only or-ed into).
+  unsigned readLanes(const double* lanes, unsigned states, double self_padding,
+                     unsigned* skip) const;
 
   /// For every table, whether it certifies its pair free at this self padding at every state
   /// of the straight motion qa -> qb (active joint values): free_along[t] is set when the

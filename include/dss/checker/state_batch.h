@@ -51,6 +51,9 @@ class StateBatch {
   /// Bit l set when state q[l] (active joint values, l < n <= kLanes) is proven free.
   /// kScalar proves none (every state to the exact check); kSse2 and kAvx2 run the lanes.
   unsigned freeLanes(const double* const* q, int n, SimdPath path) const;
+  /// The same for states given value by value: value j of state l at lanes[kLanes j + l] (all
+  /// kLanes lanes readable; those past n are ignored).
+  unsigned freeTransposed(const double* lanes, int n, SimdPath path) const;
 
  private:
   struct SceneSlot {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dss/checker/checker_counters.h"
 #include "dss/checker/collision_model.h"
@@ -41,11 +42,14 @@ class StateChecker {
   /// state counted as one check (and in batch_free); the others are left to check(). A
   /// checker without a batched pass proves none.
   static constexpr int kBatchLanes = 8;
-  unsigned freeStates(const double* const* q, int n) const {
+  unsigned freeStates(const double* const* q, int n) const;
+  /// The same for states given value by value: value j of state l at lanes[kBatchLanes j + l]
+  /// (all kBatchLanes lanes readable; those past n are ignored).
+  unsigned freeLanes(const double* lanes, int n) const {
     CounterSlots::Slot& c = counters_.local();
     const auto t0 =
         timed_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-    const unsigned free = provenFree(q, n);
+    const unsigned free = provenFree(lanes, n);
     if (timed_) addTimeSince(t0, c);
     if (free) {
       const auto k = static_cast<std::uint64_t>(__builtin_popcount(free));
@@ -71,8 +75,8 @@ class StateChecker {
   /// Whether a state within the model's bounds collides; `counters` (this thread's slot) takes
   /// the narrow-phase tests and cap hits.
   virtual bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const = 0;
-  /// freeStates' lanes (none by default).
-  virtual unsigned provenFree(const double* const*, int) const { return 0; }
+  /// freeLanes' states proven free (none by default).
+  virtual unsigned provenFree(const double* /*lanes*/, int /*n*/) const { return 0; }
   CounterSlots::Slot& counterSlot() const { return counters_.local(); }
 
  private:
@@ -97,5 +101,19 @@ class StateChecker {
   CounterSlots counters_;
   bool timed_ = false;
 };
+
+inline unsigned StateChecker::freeStates(const double* const* q, int n) const {
+  if (n <= 0) return 0;
+  n = n < kBatchLanes ? n : kBatchLanes;
+  const std::size_t nq = model_->robot().numActiveJoints();
+  thread_local std::vector<double> lanes;
+  if (lanes.size() < nq * kBatchLanes) lanes.resize(nq * kBatchLanes);
+  // Lanes past n repeat the first state.
+  for (int l = 0; l < kBatchLanes; ++l) {
+    const double* ql = q[l < n ? l : 0];
+    for (std::size_t j = 0; j < nq; ++j) lanes[j * kBatchLanes + std::size_t(l)] = ql[j];
+  }
+  return freeLanes(lanes.data(), n);
+}
 
 }  // namespace dss
