@@ -17,7 +17,7 @@ struct CheckerCounters {
   /// Wall time in the checks, nanoseconds (0 unless the checker times its checks:
   /// StateChecker::timeChecks).
   std::uint64_t checking_ns = 0;
-  /// Checks answered free by a batched pass (StateChecker::freeStates), counted in `checks`.
+  /// Checks answered free by a batched pass (StateChecker::freeLanes), counted in `checks`.
   std::uint64_t batch_free = 0;
 
   /// The counts between two snapshots.

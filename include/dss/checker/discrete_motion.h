@@ -60,7 +60,7 @@ bool motionStatesFree(int n, Free&& free, int* first_colliding = nullptr,
 
 /// The same verdict (and first colliding state) as motionStatesFree, with states decided in
 /// batches: `batch(js, m)` returns bit i set for each state js[i] (m <= kMotionBatch states)
-/// proven free (StateChecker::freeStates); the states it leaves are decided by `free`, in the
+/// proven free (StateChecker::freeLanes); the states it leaves are decided by `free`, in the
 /// same order as the batch lists them, and so is state n (the end state, which OMPL decides
 /// with the space information's validity checker). Without `first_colliding`: the first
 /// `kMotionProbes` states of the order one by one (a colliding motion mostly ends there), then
@@ -111,7 +111,7 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
 
 /// A batch for motionStatesFreeBatched: states js[0 .. m) (m <= kMotionBatch) of the motion
 /// a -> b at n segments, each value interpolated as OMPL's real vector spaces do (a + (b - a)
-/// j / n), handed to checker.freeStates (per-thread scratch).
+/// j / n), handed to checker.freeLanes value by value (per-thread scratch).
 unsigned freeInterpolated(const StateChecker& checker, const double* a, const double* b, int n,
                           const int* js, int m);
 
