@@ -69,17 +69,20 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
   };
   // The oriented boxes of the obstacles of each slot checked against the scene (at most
   // kMaxBoxes: beyond that the grid alone), and the float roundings of a point's distance to
-  // one: a few per coordinate of the point, the box's centre and its extent.
+  // one near the threshold (a point within a radius of the box): a few per coordinate of the
+  // point, the box's centre, its turn and its extent.
   constexpr std::size_t kMaxBoxes = 16;
   const std::vector<Obb>& obbs = model.obstacleObbs();
-  double world = 0.0;
+  double world = 0.0, largest = 0.0;
   for (const auto& s : slots)
-    if (s.obstacles.size() <= kMaxBoxes)
+    if (s.obstacles.size() <= kMaxBoxes) {
+      largest = std::max(largest, s.radius + scene_padding + margin_);
       for (int o : s.obstacles) {
         const Obb& b = obbs[std::size_t(o)];
         world = std::max(world, b.c.norm() + b.h.sum());
       }
-  const double box_slack = 32.0 * u * (2.0 * world + 1.0);
+    }
+  const double box_slack = 32.0 * u * (2.0 * world + largest + 1.0);
   // The squared distance beyond which a ball of radius r is clear of a box, rounded up.
   const auto reach2 = [&](double r) {
     const double d = r + scene_padding + margin_ + box_slack;
