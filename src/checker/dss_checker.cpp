@@ -33,7 +33,7 @@ DssChecker::DssChecker(std::shared_ptr<const CollisionModel> model, const Settin
       batch_(this->model(), settings.scene_padding, settings.self_padding) {}
 
 unsigned DssChecker::provenFree(const double* lanes, int n) const {
-  return batch_.freeTransposed(lanes, n, batch_path_);
+  return batch_.freeLanes(lanes, n, batch_path_);
 }
 
 bool DssChecker::collidesWithinBounds(const double* q, CounterSlots::Slot&) const {

@@ -122,21 +122,7 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
   for (const auto& p : model.selfPairs()) pairs_.push_back({p.a, p.b, p.table});
 }
 
-unsigned StateBatch::freeLanes(const double* const* q, int n, SimdPath path) const {
-  if (!enabled_ || n <= 0 || path == SimdPath::kScalar) return 0;
-  n = std::min(n, kLanes);
-  const std::size_t nq = model_->robot().numActiveJoints();
-  thread_local std::vector<double> qs;
-  if (qs.size() < nq * kLanes) qs.resize(nq * kLanes);
-  // Lanes past n repeat the first state.
-  for (int l = 0; l < kLanes; ++l) {
-    const double* ql = q[l < n ? l : 0];
-    for (std::size_t j = 0; j < nq; ++j) qs[j * kLanes + std::size_t(l)] = ql[j];
-  }
-  return freeTransposed(qs.data(), n, path);
-}
-
-unsigned StateBatch::freeTransposed(const double* lanes, int n, SimdPath path) const {
+unsigned StateBatch::freeLanes(const double* lanes, int n, SimdPath path) const {
   if (!enabled_ || n <= 0 || path == SimdPath::kScalar) return 0;
   n = std::min(n, kLanes);
   const CollisionModel& m = *model_;

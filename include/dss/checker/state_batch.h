@@ -48,12 +48,11 @@ class StateBatch {
   /// How far (metres) a float centre may lie from the exact one: every test is grown by it.
   double margin() const { return margin_; }
 
-  /// Bit l set when state q[l] (active joint values, l < n <= kLanes) is proven free.
-  /// kScalar proves none (every state to the exact check); kSse2 and kAvx2 run the lanes.
-  unsigned freeLanes(const double* const* q, int n, SimdPath path) const;
-  /// The same for states given value by value: value j of state l at lanes[kLanes j + l] (all
-  /// kLanes lanes readable; those past n are ignored).
-  unsigned freeTransposed(const double* lanes, int n, SimdPath path) const;
+  /// Bit l set when state l (l < n <= kLanes) is proven free, the states given value by value:
+  /// active joint value j of state l at lanes[kLanes j + l] (all kLanes lanes readable; those
+  /// past n are ignored). kScalar proves none (every state to the exact check); kSse2 and
+  /// kAvx2 run the lanes.
+  unsigned freeLanes(const double* lanes, int n, SimdPath path) const;
 
  private:
   struct SceneSlot {
