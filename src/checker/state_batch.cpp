@@ -120,6 +120,37 @@ StateBatch::StateBatch(const CollisionModel& model, double scene_padding, double
     scene_.push_back(scene);
   }
   for (const auto& p : model.selfPairs()) pairs_.push_back({p.a, p.b, p.table});
+  // The elements' local boxes (slots with at most kMaxBoxElements elements), each with the
+  // error of its float world placement: the poses' error at its farthest point (a point p of
+  // the pose link's frame lies within sqrt(3) (positionError + rotationError |p|_1) of its
+  // exact place), plus the roundings of its axes and centre; twice that.
+  constexpr int kMaxBoxElements = 4;
+  for (const auto& sl : slots) {
+    SlotBoxes sb;
+    if (sl.num_elements > 0 && sl.num_elements <= kMaxBoxElements) {
+      sb.first = static_cast<int>(element_boxes_.size());
+      sb.count = sl.num_elements;
+      for (int e = sl.first_element; e < sl.first_element + sl.num_elements; ++e) {
+        const CollisionModel::Element& el = elements[std::size_t(e)];
+        const Eigen::Matrix3d R = el.X_PS.linear();
+        const Eigen::Vector3d c = el.X_PS * el.box_center_S;
+        ElementBox b;
+        double reach = c.cwiseAbs().sum();
+        for (int j = 0; j < 3; ++j) {
+          for (int i = 0; i < 3; ++i) b.r[3 * j + i] = static_cast<float>(R(i, j));
+          b.c[j] = static_cast<float>(c[j]);
+          b.h[j] = static_cast<float>(el.box_half[j] * (1.0 + 1e-6));
+          reach += el.box_half[j] * R.col(j).cwiseAbs().sum();
+        }
+        const double error =
+            std::sqrt(3.0) * (kin_.positionError() + kin_.rotationError() * reach) +
+            64.0 * u * (reach + 1.0);
+        b.error = static_cast<float>(2.0 * error);
+        element_boxes_.push_back(b);
+      }
+    }
+    slot_boxes_.push_back(sb);
+  }
 }
 
 unsigned StateBatch::freeLanes(const double* lanes, int n, SimdPath path) const {
@@ -213,7 +244,72 @@ __attribute__((always_inline)) inline unsigned boxesClear(const Box* boxes, int 
   }
   return lanes::laneBits(clear);
 }
+
+// The lanes where the boxes A and B (local boxes posed by the lanes' poses XA and XB) are
+// proven apart by more than `gap`, by any of the 15 axes of the separating-axis test. Each
+// float box is the image of its local box under the float pose, within A.error (B.error) of
+// the exact one; an axis L separates the exact boxes by more than gap when the centres'
+// distance along it exceeds the two projection radii plus |L| (gap + both errors), all
+// grown for the roundings of the test (|L|_1 bounds |L|). A degenerate axis (parallel
+// edges) proves nothing; nor does NaN.
+template <class ElementBox>
+__attribute__((always_inline)) inline unsigned elementBoxesApart(const KinematicsBatch::Pose& XA,
+                                                                 const ElementBox& A,
+                                                                 const KinematicsBatch::Pose& XB,
+                                                                 const ElementBox& B, float gap) {
+  auto worldAxes = [](const KinematicsBatch::Pose& X, const ElementBox& E, F8(*w)[3]) {
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        w[i][k] = (lanes::load(X.v[k]) * E.r[3 * i] + lanes::load(X.v[3 + k]) * E.r[3 * i + 1]) +
+                  lanes::load(X.v[6 + k]) * E.r[3 * i + 2];
+  };
+  F8 aw[3][3], bw[3][3];
+  worldAxes(XA, A, aw);
+  worldAxes(XB, B, bw);
+  const Point ac = place(XA, A.c), bc = place(XB, B.c);
+  const F8 d[3] = {bc.x - ac.x, bc.y - ac.y, bc.z - ac.z};
+  auto abs = [](F8 v) { return v < 0.0f ? -v : v; };
+  const F8 spread = (abs(d[0]) + abs(d[1])) + abs(d[2]) + ((A.h[0] + A.h[1]) + A.h[2]) +
+                    ((B.h[0] + B.h[1]) + B.h[2]) + 1.0f;
+  const F8 extra = (gap + A.error + B.error) + 1e-5f * spread;
+  I8 apart = I8{};
+  auto test = [&](const F8* l) {
+    auto dot = [l](const F8* v) { return (l[0] * v[0] + l[1] * v[1]) + l[2] * v[2]; };
+    const F8 s = abs(dot(d));
+    const F8 ra = (A.h[0] * abs(dot(aw[0])) + A.h[1] * abs(dot(aw[1]))) + A.h[2] * abs(dot(aw[2]));
+    const F8 rb = (B.h[0] * abs(dot(bw[0])) + B.h[1] * abs(dot(bw[1]))) + B.h[2] * abs(dot(bw[2]));
+    const F8 norm1 = (abs(l[0]) + abs(l[1])) + abs(l[2]);
+    apart |= s > ((ra + rb) + norm1 * extra) * (1.0f + 1e-5f);
+  };
+  for (int i = 0; i < 3; ++i) test(aw[i]);
+  for (int j = 0; j < 3; ++j) test(bw[j]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const F8* x = aw[i];
+      const F8* y = bw[j];
+      const F8 l[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2],
+                       x[0] * y[1] - x[1] * y[0]};
+      test(l);
+    }
+  return lanes::laneBits(apart);
+}
 }  // namespace
+
+// The test out of line (it runs rarely, and inlined it would crowd the batch's registers), once
+// per path.
+template <class ElementBox>
+__attribute__((noinline)) unsigned elementBoxesApartGeneric(const KinematicsBatch::Pose& XA,
+                                                            const ElementBox& A,
+                                                            const KinematicsBatch::Pose& XB,
+                                                            const ElementBox& B, float gap) {
+  return elementBoxesApart(XA, A, XB, B, gap);
+}
+template <class ElementBox>
+DSS_TARGET_AVX2 __attribute__((noinline)) unsigned elementBoxesApartAvx2(
+    const KinematicsBatch::Pose& XA, const ElementBox& A, const KinematicsBatch::Pose& XB,
+    const ElementBox& B, float gap) {
+  return elementBoxesApart(XA, A, XB, B, gap);
+}
 
 __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs, unsigned valid,
                                                                const unsigned* skip,
@@ -292,6 +388,24 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     const float r = ra + rb;
     return lanes::laneBits(d2 > r * r * (1.0f + 1e-5f) ? I8{} - 1 : I8{});
   };
+  // The lanes of `lanes` where every element box of slot a is apart from every one of slot b.
+  const float box_gap = static_cast<float>(self_padding_ * (1.0 + 1e-6));
+  auto boxesApart = [&](int a, int b, unsigned lanes_in) {
+    const SlotBoxes& sa = slot_boxes_[std::size_t(a)];
+    const SlotBoxes& sb = slot_boxes_[std::size_t(b)];
+    if (sa.count == 0 || sb.count == 0) return 0u;
+    const KinematicsBatch::Pose& XA = X[slot_link_[std::size_t(a)]];
+    const KinematicsBatch::Pose& XB = X[slot_link_[std::size_t(b)]];
+    unsigned all = lanes_in;
+    for (int i = sa.first; i < sa.first + sa.count && all; ++i)
+      for (int j = sb.first; j < sb.first + sb.count && all; ++j)
+        all &= path == SimdPath::kAvx2
+                   ? elementBoxesApartAvx2(XA, element_boxes_[std::size_t(i)], XB,
+                                           element_boxes_[std::size_t(j)], box_gap)
+                   : elementBoxesApartGeneric(XA, element_boxes_[std::size_t(i)], XB,
+                                              element_boxes_[std::size_t(j)], box_gap);
+    return all;
+  };
   for (const SelfPair& p : pairs_) {
     unsigned near =
         open & ~apart(c(p.a), slot_grown_[std::size_t(p.a)], c(p.b), slot_grown_[std::size_t(p.b)]);
@@ -303,7 +417,7 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     const Cover& ca = cover_[std::size_t(a)];
     const Cover& cb = cover_[std::size_t(b)];
     if (ca.count == 0) {
-      open &= ~near;
+      open &= ~(near & ~boxesApart(a, b, near));
     } else {
       placeCover(a);
       if (cb.count > 0) placeCover(b);
@@ -319,6 +433,7 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
           by_balls &= apart(bi, ri, ball(j), balls_[std::size_t(j)].grown);
         ok &= by_sphere | by_balls;
       }
+      if (near & ~ok) ok |= boxesApart(a, b, near & ~ok);
       open &= ~(near & ~ok);
     }
     if (!open) return 0;

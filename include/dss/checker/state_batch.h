@@ -11,10 +11,12 @@
 // sphere alone is not cleared the same two tests for each ball of the slot's cover (its
 // elements' chains of balls, sphere_chain.h); and for every self pair the tables leave, the two
 // slot spheres (then each ball of one cover against the other slot's sphere or its cover's
-// balls).
+// balls), and for the lanes those leave, every pair of the two slots' elements' local boxes
+// (element_bounds.h) by the separating-axis test.
 // A lane is proven free when every such test proves its link clear of the obstacles' boxes and
 // every such pair apart, each test grown by margin(), which bounds the float poses' error (and
-// the box distances by the roundings of the boxes' float coordinates).
+// the box distances by the roundings of the boxes' float coordinates, and the local boxes by
+// their own bound on the float poses' error at their corners).
 //
 // Each test proves the pair it covers apart by more than the padding. Every stage of the exact
 // sweep (sweep.h) is conservative (it reports a collision only where one is proven) and its
@@ -81,6 +83,16 @@ class StateBatch {
     int a, b;   ///< slots
     int table;  ///< -1: none
   };
+  /// An element's local box in its slot's pose link frame: axes (R column by column), centre
+  /// and half extents, and how far its float world placement may lie from the exact one.
+  struct ElementBox {
+    float r[9];
+    float c[3], h[3];
+    float error;
+  };
+  struct SlotBoxes {
+    int first = 0, count = 0;  ///< into element_boxes_ (none: the slot has too many elements)
+  };
   /// The lanes' work after the per-lane tests: `valid` lanes, the tables' flags (per table, bit
   /// l for lane l).
   unsigned provenFree(const double* qs, unsigned valid, const unsigned* skip, SimdPath path) const;
@@ -101,6 +113,8 @@ class StateBatch {
   std::vector<SceneSlot> scene_;
   std::vector<Box> boxes_;
   std::vector<SelfPair> pairs_;
+  std::vector<SlotBoxes> slot_boxes_;  ///< per slot
+  std::vector<ElementBox> element_boxes_;
   std::size_t num_links_ = 0;
 };
 
