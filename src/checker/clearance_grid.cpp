@@ -121,7 +121,8 @@ ClearanceGrid::ClearanceGrid(const Aabb& region, const std::vector<Aabb>& boxes,
   below_ = origin_ - Eigen::Vector3d::Constant(size);
   stride_y_ = static_cast<std::size_t>(n[0]);
   stride_z_ = stride_y_ * static_cast<std::size_t>(n[1]);
-  bound_.assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0);
+  voxels_ = static_cast<std::size_t>(n[0]) * n[1] * n[2];
+  bound_.assign(voxels_ + kReadPast, 0);
   // Two bounds per voxel, the smaller kept: for obstacles along the axes the exact distance
   // from the voxel's cube to their boxes; for turned obstacles the larger of the distances
   // from the voxel's centre to their world box and to their oriented box, less half the
@@ -239,8 +240,8 @@ std::uint8_t ClearanceGrid::upperAt(const Eigen::Vector3d& c, const std::vector<
 
 void ClearanceGrid::buildUpper(const std::vector<Obb>& boxes, double cap) {
   cells_.clear();
-  if (bound_.empty()) return;
-  std::vector<std::uint8_t> upper(bound_.size(), kUnknown);
+  if (voxels_ == 0) return;
+  std::vector<std::uint8_t> upper(voxels_, kUnknown);
   const double stored = std::min(cap, (kUnknown - 1) * kQuantum);
   for (const Obb& b : boxes) {
     if (!(stored > 0.0) || !b.R.allFinite() || !b.c.allFinite() || !b.h.allFinite() ||
@@ -267,8 +268,8 @@ void ClearanceGrid::buildUpper(const std::vector<Obb>& boxes, double cap) {
           u = std::min(u, static_cast<std::uint8_t>(std::ceil(d / kQuantum)));
         }
   }
-  cells_.resize(bound_.size());
-  for (std::size_t i = 0; i < bound_.size(); ++i)
+  cells_.resize(voxels_);
+  for (std::size_t i = 0; i < voxels_; ++i)
     cells_[i] = static_cast<std::uint16_t>(bound_[i] | (upper[i] << 8));
 }
 
@@ -276,14 +277,14 @@ void ClearanceGrid::buildCandidates(const std::vector<Aabb>& boxes, double radiu
                                     std::size_t max_bytes, const std::vector<Obb>& obbs) {
   words_ = 0;
   candidates_.clear();
-  if (bound_.empty() || boxes.empty() || !(radius >= 0.0) || !std::isfinite(radius) ||
+  if (voxels_ == 0 || boxes.empty() || !(radius >= 0.0) || !std::isfinite(radius) ||
       !(obbs.empty() || obbs.size() == boxes.size()))
     return;
   for (const Aabb& b : boxes)
     if (!b.lower.allFinite() || !b.upper.allFinite()) return;
   const std::size_t words = (boxes.size() + 63) / 64;
-  if (bound_.size() > max_bytes / (8 * words)) return;
-  candidates_.assign(bound_.size() * words, 0);
+  if (voxels_ > max_bytes / (8 * words)) return;
+  candidates_.assign(voxels_ * words, 0);
   // A ball centred in a voxel lies within half the diagonal plus the radius of the centre; a
   // margin covers the rounding of the centre and of voxel(), which may pick a neighbour for a
   // point within rounding of a face.

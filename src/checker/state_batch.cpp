@@ -9,6 +9,10 @@
 #include "dss/checker/sphere_chain.h"
 #include "dss/core/lanes.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace dss {
 
 namespace {
@@ -198,11 +202,27 @@ __attribute__((always_inline)) inline Point place(const KinematicsBatch::Pose& X
           ((e(11) + e(2) * p[0]) + e(5) * p[1]) + e(8) * p[2]};
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+// The lanes l of `in` where bound[at[l]] > threshold, by one gather (the grid keeps
+// ClearanceGrid::kReadPast readable bytes past its last voxel; the lanes outside it read voxel
+// 0).
+DSS_TARGET_AVX2 inline unsigned gatherAbove(const std::uint8_t* bound, const std::int32_t* at,
+                                            unsigned in, int threshold) {
+  const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
+  const __m256i v =
+      _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(bound), index, 1),
+                       _mm256_set1_epi32(0xff));
+  const __m256i above = _mm256_cmpgt_epi32(v, _mm256_set1_epi32(threshold));
+  return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(above))) & in;
+}
+#endif
+
 // The lanes where the grid's lower bound at point c exceeds `threshold` quanta (never outside
-// the grid or for NaN).
+// the grid or for NaN). `gather`: the bounds by gatherAbove (AVX2, a grid with voxels).
 __attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lookup& g,
                                                          const float* below, float inv,
-                                                         const Point& c, int threshold) {
+                                                         const Point& c, int threshold,
+                                                         bool gather) {
   // Voxel coordinates, clamped so that the conversion is defined: NaN and values below 0
   // become -1 (outside), huge ones 1e7 (outside).
   auto coord = [inv](F8 v, float b) {
@@ -219,6 +239,11 @@ __attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lo
   std::int32_t at[kLanes];
   std::memcpy(at, &index, sizeof at);
   const unsigned in = lanes::laneBits(inside);
+#if defined(__x86_64__) || defined(__i386__)
+  if (gather) return gatherAbove(g.bound, at, in, threshold);
+#else
+  (void)gather;
+#endif
   unsigned clear = 0;
   for (int l = 0; l < kLanes; ++l)
     clear |= unsigned(((in >> l) & 1u) && g.bound[at[l]] > threshold) << l;
@@ -360,9 +385,10 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
   const ClearanceGrid::Lookup g = model_->clearanceGrid().lookup();
   const float below[3] = {float(g.below[0]), float(g.below[1]), float(g.below[2])};
   const float inv = float(g.inv_size);
+  const bool gather = path == SimdPath::kAvx2 && !model_->clearanceGrid().empty();
   for (const SceneSlot& s : scene_) {
     const Point sc = c(s.slot);
-    unsigned left = open & ~gridClear(g, below, inv, sc, s.threshold);
+    unsigned left = open & ~gridClear(g, below, inv, sc, s.threshold, gather);
     if (!left) continue;
     const Box* const boxes = boxes_.data() + s.first_box;
     if (s.num_boxes > 0) left &= ~boxesClear(boxes, s.num_boxes, sc, s.reach2);
@@ -373,7 +399,7 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     for (int i = cv.first; i < cv.first + cv.count && all; ++i) {
       const Ball& b = balls_[std::size_t(i)];
       const Point bc = ball(i);
-      unsigned ok = gridClear(g, below, inv, bc, b.threshold);
+      unsigned ok = gridClear(g, below, inv, bc, b.threshold, gather);
       if ((all & ~ok) && s.num_boxes > 0) ok |= boxesClear(boxes, s.num_boxes, bc, b.reach2);
       all &= ok;
     }

@@ -53,6 +53,10 @@ BOOST_AUTO_TEST_CASE(clearance_grid_is_a_lower_bound) {
     const dss::ClearanceGrid grid(region, boxes, trial % 2 ? 4096 : 65536);
     BOOST_TEST(!grid.empty());
     BOOST_TEST(grid.voxels() <= (trial % 2 ? 4096u : 65536u));
+    // The bytes a four-byte gather at the last voxel reads past it: readable, and zero.
+    const std::uint8_t* const bound = grid.lookup().bound;
+    for (std::size_t k = 0; k < dss::ClearanceGrid::kReadPast; ++k)
+      BOOST_TEST(int(bound[grid.voxels() + k]) == 0);
     for (int k = 0; k < 5000; ++k) {
       const Eigen::Vector3d c(1.3 * u(rng), 1.3 * u(rng), 1.3 * u(rng));
       double d = std::numeric_limits<double>::infinity();

@@ -103,7 +103,9 @@ class ClearanceGrid {
   /// The lookup's fields, for passes that convert many points at once (slot_spheres.h,
   /// state_batch.h): voxel coordinates u = (c - below) * inv_size, the voxel of index
   /// floor(u) - 1 per axis when that lies in [0, count), its lower bound at
-  /// bound[z * stride_z + y * stride_y + x].
+  /// bound[z * stride_z + y * stride_y + x]. When the grid is not empty, kReadPast bytes past
+  /// the last voxel are readable (zero), so that a four-byte gather may read any voxel.
+  static constexpr std::size_t kReadPast = 3;
   struct Lookup {
     double below[3];
     double inv_size;
@@ -120,8 +122,8 @@ class ClearanceGrid {
             bound_.data()};
   }
 
-  bool empty() const { return bound_.empty(); }
-  std::size_t voxels() const { return bound_.size(); }
+  bool empty() const { return voxels_ == 0; }
+  std::size_t voxels() const { return voxels_; }
   double voxelSize() const { return size_; }
   const Eigen::Vector3d& origin() const { return origin_; }
 
@@ -163,7 +165,8 @@ class ClearanceGrid {
   unsigned count_[3] = {0, 0, 0};  // voxel counts per axis (an empty grid: no point is inside)
   Eigen::Vector3d below_ = Eigen::Vector3d::Zero();  // origin_ minus one voxel per axis
   std::size_t stride_y_ = 0, stride_z_ = 0;
-  std::vector<std::uint8_t> bound_;
+  std::size_t voxels_ = 0;
+  std::vector<std::uint8_t> bound_;   // voxels_ bounds, then kReadPast zeros (none when empty)
   std::vector<std::uint16_t> cells_;  // empty until buildUpper
   std::size_t words_ = 0;             // candidate words per voxel (0: none built)
   double candidate_radius_ = 0.0;
