@@ -11,6 +11,9 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 #endif
 
 #include "dss/checker/element_bounds.h"
@@ -138,30 +141,64 @@ bool CollisionModel::withinBounds(const double* q) const {
   return true;
 }
 
-unsigned CollisionModel::boundedHeldLanes(const double* qs) const {
-  constexpr int kLanes = 8;
-  const std::size_t n = range_lower_.size();
-  // Lanes by pairs, the same comparisons as withinBounds (false for NaN); a joint outside the
-  // group also equal to its held value.
-  __m128d ok[kLanes / 2];
-  for (__m128d& o : ok) o = _mm_castsi128_pd(_mm_set1_epi32(-1));
-  std::size_t held = 0;
+#if defined(__x86_64__) || defined(__i386__)
+namespace {
+// boundedHeldLanes' ranges and held values in four-lane AVX2 vectors: the same comparisons
+// (ordered, false for NaN); a joint outside the group (in_group[a] zero) also equal to held[a].
+DSS_TARGET_AVX2 unsigned rangeLanesAvx2(const double* qs, const double* lower, const double* upper,
+                                        const double* range_held, const double* held,
+                                        const char* in_group, std::size_t n) {
+  __m256d ok[2];
+  ok[0] = ok[1] = _mm256_castsi256_pd(_mm256_set1_epi32(-1));
   for (std::size_t a = 0; a < n; ++a) {
-    const __m128d lo = _mm_set1_pd(range_lower_[a]), hi = _mm_set1_pd(range_upper_[a]),
-                  h = _mm_set1_pd(range_held_[a]);
-    const bool match = held < held_active_.size() && held_active_[held] == int(a);
-    const __m128d held_value = _mm_set1_pd(held_[a]);
-    held += match;
-    for (int p = 0; p < kLanes / 2; ++p) {
-      const __m128d v = _mm_loadu_pd(qs + a * kLanes + 2 * p);
-      __m128d in =
-          _mm_or_pd(_mm_and_pd(_mm_cmpge_pd(v, lo), _mm_cmple_pd(v, hi)), _mm_cmpeq_pd(v, h));
-      if (match) in = _mm_and_pd(in, _mm_cmpeq_pd(v, held_value));
-      ok[p] = _mm_and_pd(ok[p], in);
+    const __m256d lo = _mm256_set1_pd(lower[a]), hi = _mm256_set1_pd(upper[a]),
+                  h = _mm256_set1_pd(range_held[a]);
+    const bool match = !in_group[a];
+    const __m256d hv = _mm256_set1_pd(held[a]);
+    for (int p = 0; p < 2; ++p) {
+      const __m256d v = _mm256_loadu_pd(qs + a * 8 + 4 * p);
+      __m256d in = _mm256_or_pd(
+          _mm256_and_pd(_mm256_cmp_pd(v, lo, _CMP_GE_OQ), _mm256_cmp_pd(v, hi, _CMP_LE_OQ)),
+          _mm256_cmp_pd(v, h, _CMP_EQ_OQ));
+      if (match) in = _mm256_and_pd(in, _mm256_cmp_pd(v, hv, _CMP_EQ_OQ));
+      ok[p] = _mm256_and_pd(ok[p], in);
     }
   }
+  return unsigned(_mm256_movemask_pd(ok[0])) | (unsigned(_mm256_movemask_pd(ok[1])) << 4);
+}
+}  // namespace
+#endif
+
+unsigned CollisionModel::boundedHeldLanes(const double* qs, SimdPath path) const {
+  constexpr int kLanes = 8;
+  const std::size_t n = range_lower_.size();
   unsigned bits = 0;
-  for (int p = 0; p < kLanes / 2; ++p) bits |= unsigned(_mm_movemask_pd(ok[p])) << (2 * p);
+#if defined(__x86_64__) || defined(__i386__)
+  if (path == SimdPath::kAvx2 && simdPathAvailable(SimdPath::kAvx2)) {
+    bits = rangeLanesAvx2(qs, range_lower_.data(), range_upper_.data(), range_held_.data(),
+                          held_.data(), in_group_.data(), n);
+  } else
+#endif
+  {
+    // Lanes by pairs, the same comparisons as withinBounds (false for NaN); a joint outside
+    // the group also equal to its held value.
+    __m128d ok[kLanes / 2];
+    for (__m128d& o : ok) o = _mm_castsi128_pd(_mm_set1_epi32(-1));
+    for (std::size_t a = 0; a < n; ++a) {
+      const __m128d lo = _mm_set1_pd(range_lower_[a]), hi = _mm_set1_pd(range_upper_[a]),
+                    h = _mm_set1_pd(range_held_[a]);
+      const bool match = !in_group_[a];
+      const __m128d held_value = _mm_set1_pd(held_[a]);
+      for (int p = 0; p < kLanes / 2; ++p) {
+        const __m128d v = _mm_loadu_pd(qs + a * kLanes + 2 * p);
+        __m128d in =
+            _mm_or_pd(_mm_and_pd(_mm_cmpge_pd(v, lo), _mm_cmple_pd(v, hi)), _mm_cmpeq_pd(v, h));
+        if (match) in = _mm_and_pd(in, _mm_cmpeq_pd(v, held_value));
+        ok[p] = _mm_and_pd(ok[p], in);
+      }
+    }
+    for (int p = 0; p < kLanes / 2; ++p) bits |= unsigned(_mm_movemask_pd(ok[p])) << (2 * p);
+  }
   if (quaternions_.empty()) return bits;
   // Quaternion norms per lane.
   double q[kLanes][4];

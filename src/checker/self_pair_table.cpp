@@ -3,6 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 #include "dss/checker/motion_bounds.h"
 #include "dss/core/any_shape_query.h"
@@ -235,20 +240,69 @@ bool SelfPairTables::read(const double* q, bool held_match, double self_padding,
   return false;
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+namespace {
+// SelfPairTable::indexOf for eight lanes (value j of lane l at lanes[8 var[j] + l]), four at a
+// time in AVX2: the same double operations (the wrap's division, floor, product and
+// difference, the truncation toward zero), so the same index; -1 outside the range or for NaN.
+DSS_TARGET_AVX2 void laneIndicesAvx2(const SelfPairTable& t, const double* lanes,
+                                     std::int32_t* idx) {
+  for (int h = 0; h < 8; h += 4) {
+    __m128i index = _mm_setzero_si128();
+    __m128i in = _mm_set1_epi32(-1);
+    for (int k = 0; k < t.num_vars; ++k) {
+      __m256d v = _mm256_loadu_pd(lanes + std::size_t(t.var[k]) * 8 + std::size_t(h));
+      if (t.wrap[k]) {
+        const __m256d turn = _mm256_set1_pd(6.283185307179586);
+        const __m256d turns = _mm256_floor_pd(
+            _mm256_div_pd(_mm256_add_pd(v, _mm256_set1_pd(3.141592653589793)), turn));
+        v = _mm256_sub_pd(v, _mm256_mul_pd(turn, turns));
+      }
+      const __m256d lo = _mm256_set1_pd(t.lo[k]);
+      const __m256d ok = _mm256_and_pd(_mm256_cmp_pd(v, lo, _CMP_GE_OQ),
+                                       _mm256_cmp_pd(v, _mm256_set1_pd(t.hi[k]), _CMP_LE_OQ));
+      // The four comparison masks narrowed to 32 bits (each 64-bit mask is all ones or zero).
+      const __m256i ok32 = _mm256_permutevar8x32_epi32(_mm256_castpd_si256(ok),
+                                                       _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+      in = _mm_and_si128(in, _mm256_castsi256_si128(ok32));
+      __m128i i =
+          _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_sub_pd(v, lo), _mm256_set1_pd(t.inv_width[k])));
+      i = _mm_min_epi32(i, _mm_set1_epi32(t.cells[k] - 1));
+      index = _mm_add_epi32(_mm_mullo_epi32(index, _mm_set1_epi32(t.cells[k])), i);
+    }
+    index = _mm_or_si128(_mm_and_si128(in, index), _mm_andnot_si128(in, _mm_set1_epi32(-1)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(idx + h), index);
+  }
+}
+}  // namespace
+#endif
+
 unsigned SelfPairTables::readLanes(const double* lanes, unsigned states, double self_padding,
-                                   unsigned* skip) const {
+                                   unsigned* skip, SimdPath path) const {
   constexpr int kLanes = 8;
   const bool use_colliding = self_padding >= padding_, use_free = self_padding <= padding_;
+#if defined(__x86_64__) || defined(__i386__)
+  const bool avx2 = path == SimdPath::kAvx2 && simdPathAvailable(SimdPath::kAvx2);
+#else
+  const bool avx2 = false;
+  (void)path;
+#endif
   unsigned colliding_states = 0;
   for (const Group& g : groups_) {
     const SelfPairTable& t = tables_[std::size_t(g.first)];
+    std::int32_t idx[kLanes];
+#if defined(__x86_64__) || defined(__i386__)
+    if (avx2) laneIndicesAvx2(t, lanes, idx);
+#endif
     unsigned free_bits[4] = {0, 0, 0, 0};  // per table of the group, bit l for state l
     for (unsigned left = states; left; left &= left - 1) {
       const int l = __builtin_ctz(left);
-      double v[2];
-      for (int k = 0; k < t.num_vars; ++k) v[k] = lanes[std::size_t(t.var[k]) * kLanes + l];
-      const int idx = t.indexOf(v);
-      const unsigned byte = idx < 0 ? 0u : g.packed[std::size_t(idx)];
+      if (!avx2) {
+        double v[2];
+        for (int k = 0; k < t.num_vars; ++k) v[k] = lanes[std::size_t(t.var[k]) * kLanes + l];
+        idx[l] = t.indexOf(v);
+      }
+      const unsigned byte = idx[l] < 0 ? 0u : g.packed[std::size_t(idx[l])];
       if (use_colliding && colliding(byte)) colliding_states |= 1u << l;
       const unsigned f = use_free ? free(byte) : 0u;
       for (int k = 0; k < g.count; ++k) free_bits[k] |= ((f >> (2 * k)) & 1u) << l;

@@ -163,13 +163,13 @@ unsigned StateBatch::freeLanes(const double* lanes, int n, SimdPath path) const 
   const CollisionModel& m = *model_;
   // The tests in double, as the checker runs them: bounds and held joints, then the tables
   // (per table, bit l: lane l's free flag).
-  unsigned valid = m.boundedHeldLanes(lanes) & ((1u << n) - 1u);
+  unsigned valid = m.boundedHeldLanes(lanes, path) & ((1u << n) - 1u);
   if (!valid) return 0;
   const std::size_t tables = m.selfTables().size();
   thread_local std::vector<unsigned> skip;
   if (skip.size() < tables) skip.resize(tables);
   std::fill(skip.begin(), skip.begin() + static_cast<std::ptrdiff_t>(tables), 0u);
-  valid &= ~m.selfTables().readLanes(lanes, valid, self_padding_, skip.data());
+  valid &= ~m.selfTables().readLanes(lanes, valid, self_padding_, skip.data(), path);
   if (!valid) return 0;
   return valid & provenFree(lanes, valid, skip.data(), path);
 }

@@ -299,7 +299,7 @@ BOOST_AUTO_TEST_CASE(invalid_states_have_no_clearance_and_no_clear_motion) {
 
 // Eight states at once (CollisionModel::boundedHeldLanes, the batches' first test): bit l is
 // withinBounds && heldMatch of state l, on lanes drawn from the limits, one ulp beyond them,
-// held values, non-finite values and quaternions without direction (seeded).
+// held values, non-finite values and quaternions without direction (seeded), on each path.
 BOOST_AUTO_TEST_CASE(bounded_held_lanes_are_within_bounds_and_held_match_per_state) {
   const HeldOutside f;
   const std::string dir = std::string(DSS_SOURCE_DIR) + "/robots/dss_free_flyer";
@@ -337,11 +337,13 @@ BOOST_AUTO_TEST_CASE(bounded_held_lanes_are_within_bounds_and_held_match_per_sta
           for (std::size_t k = 3; k < 7; ++k) states[l][k] = 0.0;
         for (std::size_t a = 0; a < nq; ++a) lanes[a * 8 + std::size_t(l)] = states[l][a];
       }
-      const unsigned bits = m->boundedHeldLanes(lanes.data());
-      for (int l = 0; l < 8; ++l) {
-        const bool expect = m->withinBounds(states[l].data()) && m->heldMatch(states[l].data());
-        BOOST_TEST(((bits >> l) & 1u) == unsigned(expect), "round " << round << " lane " << l);
-        (expect ? passed : failed) += 1;
+      for (dss::SimdPath path : {dss::SimdPath::kSse2, dss::SimdPath::kAvx2}) {
+        const unsigned bits = m->boundedHeldLanes(lanes.data(), path);
+        for (int l = 0; l < 8; ++l) {
+          const bool expect = m->withinBounds(states[l].data()) && m->heldMatch(states[l].data());
+          BOOST_TEST(((bits >> l) & 1u) == unsigned(expect), "round " << round << " lane " << l);
+          (expect ? passed : failed) += 1;
+        }
       }
     }
     // Both answers were asked for.

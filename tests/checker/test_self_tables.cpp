@@ -26,6 +26,7 @@ namespace {
 const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
 const std::string kPanda = std::string(DSS_SHARED_DIR) + "/robots/panda";
 const std::string kMbm = std::string(DSS_SHARED_DIR) + "/scenes/mbm_panda";
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Every link pair of the model that has a table is free at q (exact DSS and FCL distance > 0
 // on the hull geometry, at the given padding). Returns the number of pairs checked.
@@ -184,10 +185,11 @@ void checkFreeAlong(const dss::CollisionModel& m, std::uint64_t seed) {
 }
 
 // readLanes on batches of eight seeded random states (at the held values; now and then a value
-// beyond its range or NaN) gives each state of the batch what read gives it: the same
-// certified collision, and for the others the same free flag per table, at paddings below, at
-// and above the tables'. Returns the free flags compared set.
-std::size_t checkReadLanes(const dss::CollisionModel& m, unsigned seed) {
+// beyond its range, NaN, or a table's cell boundary, one ulp below or above it) gives each
+// state of the batch what read gives it: the same certified collision, and for the others the
+// same free flag per table, at paddings below, at and above the tables', on `path`. Returns
+// the free flags compared set.
+std::size_t checkReadLanes(const dss::CollisionModel& m, unsigned seed, dss::SimdPath path) {
   const dss::SelfPairTables& tables = m.selfTables();
   const dss::RobotModel& robot = m.robot();
   const std::size_t nq = robot.numActiveJoints();
@@ -208,11 +210,21 @@ std::size_t checkReadLanes(const dss::CollisionModel& m, unsigned seed) {
                     : r < 0.05 ? j.limits.upper + 0.5
                                : j.limits.lower + (j.limits.upper - j.limits.lower) * unit(rng);
         }
+        if (rng() % 5 == 0) {
+          const dss::SelfPairTable& t = tables.tables()[rng() % tables.size()];
+          for (int k = 0; k < t.num_vars; ++k) {
+            double v = t.lo[k] + double(rng() % std::uint64_t(t.cells[k] + 1)) / t.inv_width[k];
+            const unsigned side = unsigned(rng() % 3);
+            if (side == 1) v = std::nextafter(v, -kInf);
+            if (side == 2) v = std::nextafter(v, kInf);
+            q[l][std::size_t(t.var[k])] = v;
+          }
+        }
         for (std::size_t a = 0; a < nq; ++a) lanes[a * 8 + std::size_t(l)] = q[l][a];
       }
       const unsigned states = unsigned(rng() & 0xFFu);
       std::fill(skip.begin(), skip.end(), 0u);
-      const unsigned hit = tables.readLanes(lanes.data(), states, padding, skip.data());
+      const unsigned hit = tables.readLanes(lanes.data(), states, padding, skip.data(), path);
       BOOST_TEST((hit & ~states) == 0u);
       for (int l = 0; l < 8; ++l) {
         if (!((states >> l) & 1u)) {
@@ -244,7 +256,8 @@ BOOST_AUTO_TEST_CASE(own_arm_tables_read_in_lanes_as_one_by_one) {
   const dss::ModelSetup p = dss::setupModel(robot, dss::loadScene(kArm + "/scenes/shelf.yaml"),
                                             req.group_name, req.startState());
   BOOST_REQUIRE(p.model->selfTables().size() > 0u);
-  BOOST_TEST(checkReadLanes(*p.model, 5) > 1000u);
+  for (dss::SimdPath path : {dss::SimdPath::kSse2, dss::SimdPath::kAvx2})
+    BOOST_TEST(checkReadLanes(*p.model, 5, path) > 1000u);
 }
 
 BOOST_AUTO_TEST_CASE(panda_tables_read_in_lanes_as_one_by_one, DSS_NEEDS_SHARED) {
@@ -253,7 +266,58 @@ BOOST_AUTO_TEST_CASE(panda_tables_read_in_lanes_as_one_by_one, DSS_NEEDS_SHARED)
   const dss::ModelSetup p =
       dss::setupModel(robot, dss::loadScene(kMbm + "/box/scene0001.yaml"), "", {});
   BOOST_REQUIRE(p.model->selfTables().size() > 0u);
-  BOOST_TEST(checkReadLanes(*p.model, 6) > 1000u);
+  for (dss::SimdPath path : {dss::SimdPath::kSse2, dss::SimdPath::kAvx2})
+    BOOST_TEST(checkReadLanes(*p.model, 6, path) > 1000u);
+}
+
+// A continuous joint's table read in lanes: wrapped values (several turns away, at cell
+// boundaries and one ulp off them), NaN and infinities get the cell the one-state lookup gives,
+// on each path.
+BOOST_AUTO_TEST_CASE(wrapped_table_reads_in_lanes_as_one_by_one) {
+  dss::SelfPairTable t;
+  t.num_vars = 2;
+  t.var[0] = 1;
+  t.var[1] = 0;
+  t.lo[0] = -M_PI, t.hi[0] = M_PI, t.wrap[0] = true;
+  t.lo[1] = -1.0, t.hi[1] = 1.0;
+  t.cells[0] = 16, t.cells[1] = 8;
+  t.inv_width[0] = 16 / (2 * M_PI), t.inv_width[1] = 4.0;
+  std::mt19937_64 rng(11);
+  t.cell_state.resize(16 * 8);
+  for (auto& c : t.cell_state) c = static_cast<unsigned char>(rng() % 3);
+  std::vector<int> index;
+  const dss::SelfPairTables tables({t}, 0.0, &index);
+  int compared = 0, decided = 0;
+  for (dss::SimdPath path : {dss::SimdPath::kSse2, dss::SimdPath::kAvx2}) {
+    for (int round = 0; round < 2000; ++round) {
+      double lanes[2 * 8];
+      for (int l = 0; l < 8; ++l) {
+        const unsigned pick = unsigned(rng() % 10);
+        const double turns = 2 * M_PI * double(int(rng() % 7) - 3);
+        double angle = -M_PI + 2 * M_PI * double(rng() % 1000) / 999.0;
+        if (pick < 3) angle = -M_PI + double(rng() % 17) / t.inv_width[0];
+        double v = angle + turns;
+        if (pick == 1) v = std::nextafter(v, -kInf);
+        if (pick == 2) v = std::nextafter(v, kInf);
+        if (pick == 3) v = rng() % 2 ? std::numeric_limits<double>::quiet_NaN() : kInf;
+        lanes[8 + l] = v;
+        lanes[l] = pick == 4 ? 1.5 : -1.0 + 2.0 * double(rng() % 1000) / 999.0;
+      }
+      unsigned skip = 0;
+      const unsigned hit = tables.readLanes(lanes, 0xFFu, 0.0, &skip, path);
+      for (int l = 0; l < 8; ++l) {
+        const double q[2] = {lanes[l], lanes[8 + l]};
+        const auto cell = t.cell(q);
+        BOOST_TEST(((hit >> l) & 1u) == unsigned(cell == dss::SelfPairTable::kColliding),
+                   "round " << round << " lane " << l);
+        BOOST_TEST(((skip >> l) & 1u) == unsigned(cell == dss::SelfPairTable::kFree),
+                   "round " << round << " lane " << l);
+        ++compared;
+        decided += cell != dss::SelfPairTable::kUnknown;
+      }
+    }
+  }
+  BOOST_TEST(decided > compared / 2);
 }
 
 BOOST_AUTO_TEST_CASE(lookup_wraps_and_refuses_nan_inf_and_out_of_range) {

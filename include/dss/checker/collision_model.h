@@ -37,6 +37,7 @@
 #include "dss/checker/self_pair_table.h"
 #include "dss/checker/slot_spheres.h"
 #include "dss/checker/sphere_box_filter.h"
+#include "dss/core/simd_path.h"
 #include "dss/robot/collision_pairs.h"
 #include "dss/robot/kinematics.h"
 #include "dss/robot/robot_model.h"
@@ -169,8 +170,9 @@ class CollisionModel {
   /// (the Panda's floating virtual joint) must be at its held values.
   bool withinBounds(const double* q) const;
   /// withinBounds() and heldMatch() of eight states at once, value j of state l at qs[8 j + l]:
-  /// bit l set when state l passes both.
-  unsigned boundedHeldLanes(const double* qs) const;
+  /// bit l set when state l passes both. kAvx2 compares four lanes at a time where the CPU
+  /// has it, any other path two; the comparisons, and so the answers, are the same.
+  unsigned boundedHeldLanes(const double* qs, SimdPath path = SimdPath::kSse2) const;
 
   const Scene& scene() const { return scene_; }  ///< kept obstacles only
   const std::vector<int>& groupActive() const { return group_active_; }

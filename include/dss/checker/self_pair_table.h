@@ -24,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "dss/core/simd_path.h"
 #include "dss/robot/kinematics.h"
 #include "dss/robot/robot_model.h"
 
@@ -131,9 +132,11 @@ class SelfPairTables {
   /// read() for the states of a batch, each at the held values, value j of state l at
   /// lanes[8 j + l], for the states l with bit l of `states` set: returns the states a table
   /// certifies colliding; for the others, bit l of skip[t] is set when table t certifies its
-  /// pair free (skip[t] is only or-ed into).
-  unsigned readLanes(const double* lanes, unsigned states, double self_padding,
-                     unsigned* skip) const;
+  /// pair free (skip[t] is only or-ed into). kAvx2 computes the cells' indices four lanes at a
+  /// time where the CPU has it (the same operations, so the same cells); any other path lane
+  /// by lane.
+  unsigned readLanes(const double* lanes, unsigned states, double self_padding, unsigned* skip,
+                     SimdPath path = SimdPath::kSse2) const;
 
   /// For every table, whether it certifies its pair free at this self padding at every state
   /// of the straight motion qa -> qb (active joint values): free_along[t] is set when the
