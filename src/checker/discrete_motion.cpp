@@ -75,8 +75,9 @@ unsigned freeInterpolated(const StateChecker& checker, const double* a, const do
 
 DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker,
                                              bool batched)
-    : checker_(std::move(checker)), batched_(batched) {
+    : checker_(std::move(checker)) {
   if (!checker_) throw std::invalid_argument("DiscreteMotionChecker: no state checker");
+  batched_ = batched && checker_->batchesPay();
 }
 
 bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segments,

@@ -218,23 +218,27 @@ DSS_TARGET_AVX2 inline unsigned gatherAbove(const std::uint8_t* bound, const std
 #endif
 
 // The lanes where the grid's lower bound at point c exceeds `threshold` quanta (never outside
-// the grid or for NaN). `gather`: the bounds by gatherAbove (AVX2, a grid with voxels).
+// the grid or for NaN). `gather`: the bounds by gatherAbove (AVX2, a grid with voxels);
+// `wide`: compiled for AVX2 (lanes.h).
 __attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lookup& g,
                                                          const float* below, float inv,
-                                                         const Point& c, int threshold,
-                                                         bool gather) {
+                                                         const Point& c, int threshold, bool gather,
+                                                         bool wide) {
   // Voxel coordinates, clamped so that the conversion is defined: NaN and values below 0
   // become -1 (outside), huge ones 1e7 (outside).
-  auto coord = [inv](F8 v, float b) {
+  auto coord = [inv, wide](F8 v, float b) {
     F8 u = (v - b) * inv;
-    u = u > 0.0f ? u : -1.0f;
-    u = u < 1e7f ? u : 1e7f;
+    u = lanes::select(lanes::greater(u, F8{}, wide), u, lanes::broadcast(-1.0f), wide);
+    u = lanes::select(lanes::less(u, lanes::broadcast(1e7f), wide), u, lanes::broadcast(1e7f),
+                      wide);
     return __builtin_convertvector(u, I8) - 1;
   };
+  // Inside: 0 <= i < count per coordinate.
+  auto within = [wide](I8 i, std::size_t count) {
+    return lanes::greater(i, I8{} - 1, wide) & lanes::less(i, I8{} + std::int32_t(count), wide);
+  };
   const I8 x = coord(c.x, below[0]), y = coord(c.y, below[1]), z = coord(c.z, below[2]);
-  const I8 inside = (x >= 0) & (x < I8{} + std::int32_t(g.count[0])) & (y >= 0) &
-                    (y < I8{} + std::int32_t(g.count[1])) & (z >= 0) &
-                    (z < I8{} + std::int32_t(g.count[2]));
+  const I8 inside = within(x, g.count[0]) & within(y, g.count[1]) & within(z, g.count[2]);
   const I8 index = (z * std::int32_t(g.stride_z) + y * std::int32_t(g.stride_y) + x) & inside;
   std::int32_t at[kLanes];
   std::memcpy(at, &index, sizeof at);
@@ -250,10 +254,10 @@ __attribute__((always_inline)) inline unsigned gridClear(const ClearanceGrid::Lo
   return clear;
 }
 // The lanes where point c is farther than sqrt(reach2) from every box of boxes[0, count)
-// (never for NaN).
+// (never for NaN). `wide`: compiled for AVX2 (lanes.h).
 template <class Box>
 __attribute__((always_inline)) inline unsigned boxesClear(const Box* boxes, int count,
-                                                          const Point& c, float reach2) {
+                                                          const Point& c, float reach2, bool wide) {
   I8 clear = I8{} - 1;
   for (int b = 0; b < count; ++b) {
     const Box& x = boxes[b];
@@ -261,11 +265,11 @@ __attribute__((always_inline)) inline unsigned boxesClear(const Box* boxes, int 
     F8 d2 = F8{};
     for (int j = 0; j < 3; ++j) {
       const F8 l = (dx * x.r[3 * j] + dy * x.r[3 * j + 1]) + dz * x.r[3 * j + 2];
-      F8 e = (l < 0.0f ? -l : l) - x.h[j];
-      e = e < 0.0f ? F8{} : e;  // NaN stays NaN
+      F8 e = lanes::abs(l) - x.h[j];
+      e = lanes::select(lanes::less(e, F8{}, wide), F8{}, e, wide);  // NaN stays NaN
       d2 = d2 + e * e;
     }
-    clear &= d2 > reach2;
+    clear &= lanes::greater(d2, lanes::broadcast(reach2), wide);
   }
   return lanes::laneBits(clear);
 }
@@ -276,12 +280,13 @@ __attribute__((always_inline)) inline unsigned boxesClear(const Box* boxes, int 
 // the exact one; an axis L separates the exact boxes by more than gap when the centres'
 // distance along it exceeds the two projection radii plus |L| (gap + both errors), all
 // grown for the roundings of the test (|L|_1 bounds |L|). A degenerate axis (parallel
-// edges) proves nothing; nor does NaN.
+// edges) proves nothing; nor does NaN. `wide`: compiled for AVX2 (lanes.h).
 template <class ElementBox>
 __attribute__((always_inline)) inline unsigned elementBoxesApart(const KinematicsBatch::Pose& XA,
                                                                  const ElementBox& A,
                                                                  const KinematicsBatch::Pose& XB,
-                                                                 const ElementBox& B, float gap) {
+                                                                 const ElementBox& B, float gap,
+                                                                 bool wide) {
   auto worldAxes = [](const KinematicsBatch::Pose& X, const ElementBox& E, F8(*w)[3]) {
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
@@ -293,7 +298,7 @@ __attribute__((always_inline)) inline unsigned elementBoxesApart(const Kinematic
   worldAxes(XB, B, bw);
   const Point ac = place(XA, A.c), bc = place(XB, B.c);
   const F8 d[3] = {bc.x - ac.x, bc.y - ac.y, bc.z - ac.z};
-  auto abs = [](F8 v) { return v < 0.0f ? -v : v; };
+  using lanes::abs;
   const F8 spread = (abs(d[0]) + abs(d[1])) + abs(d[2]) + ((A.h[0] + A.h[1]) + A.h[2]) +
                     ((B.h[0] + B.h[1]) + B.h[2]) + 1.0f;
   const F8 extra = (gap + A.error + B.error) + 1e-5f * spread;
@@ -304,7 +309,7 @@ __attribute__((always_inline)) inline unsigned elementBoxesApart(const Kinematic
     const F8 ra = (A.h[0] * abs(dot(aw[0])) + A.h[1] * abs(dot(aw[1]))) + A.h[2] * abs(dot(aw[2]));
     const F8 rb = (B.h[0] * abs(dot(bw[0])) + B.h[1] * abs(dot(bw[1]))) + B.h[2] * abs(dot(bw[2]));
     const F8 norm1 = (abs(l[0]) + abs(l[1])) + abs(l[2]);
-    apart |= s > ((ra + rb) + norm1 * extra) * (1.0f + 1e-5f);
+    apart |= lanes::greater(s, ((ra + rb) + norm1 * extra) * (1.0f + 1e-5f), wide);
   };
   for (int i = 0; i < 3; ++i) test(aw[i]);
   for (int j = 0; j < 3; ++j) test(bw[j]);
@@ -327,13 +332,13 @@ __attribute__((noinline)) unsigned elementBoxesApartGeneric(const KinematicsBatc
                                                             const ElementBox& A,
                                                             const KinematicsBatch::Pose& XB,
                                                             const ElementBox& B, float gap) {
-  return elementBoxesApart(XA, A, XB, B, gap);
+  return elementBoxesApart(XA, A, XB, B, gap, false);
 }
 template <class ElementBox>
 DSS_TARGET_AVX2 __attribute__((noinline)) unsigned elementBoxesApartAvx2(
     const KinematicsBatch::Pose& XA, const ElementBox& A, const KinematicsBatch::Pose& XB,
     const ElementBox& B, float gap) {
-  return elementBoxesApart(XA, A, XB, B, gap);
+  return elementBoxesApart(XA, A, XB, B, gap, true);
 }
 
 __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs, unsigned valid,
@@ -385,13 +390,14 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
   const ClearanceGrid::Lookup g = model_->clearanceGrid().lookup();
   const float below[3] = {float(g.below[0]), float(g.below[1]), float(g.below[2])};
   const float inv = float(g.inv_size);
-  const bool gather = path == SimdPath::kAvx2 && !model_->clearanceGrid().empty();
+  const bool wide = path == SimdPath::kAvx2;  // compiled for AVX2 (runAvx2)
+  const bool gather = wide && !model_->clearanceGrid().empty();
   for (const SceneSlot& s : scene_) {
     const Point sc = c(s.slot);
-    unsigned left = open & ~gridClear(g, below, inv, sc, s.threshold, gather);
+    unsigned left = open & ~gridClear(g, below, inv, sc, s.threshold, gather, wide);
     if (!left) continue;
     const Box* const boxes = boxes_.data() + s.first_box;
-    if (s.num_boxes > 0) left &= ~boxesClear(boxes, s.num_boxes, sc, s.reach2);
+    if (s.num_boxes > 0) left &= ~boxesClear(boxes, s.num_boxes, sc, s.reach2, wide);
     if (!left) continue;
     const Cover& cv = cover_[std::size_t(s.slot)];
     unsigned all = cv.count > 0 ? left : 0u;
@@ -399,8 +405,8 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     for (int i = cv.first; i < cv.first + cv.count && all; ++i) {
       const Ball& b = balls_[std::size_t(i)];
       const Point bc = ball(i);
-      unsigned ok = gridClear(g, below, inv, bc, b.threshold, gather);
-      if ((all & ~ok) && s.num_boxes > 0) ok |= boxesClear(boxes, s.num_boxes, bc, b.reach2);
+      unsigned ok = gridClear(g, below, inv, bc, b.threshold, gather, wide);
+      if ((all & ~ok) && s.num_boxes > 0) ok |= boxesClear(boxes, s.num_boxes, bc, b.reach2, wide);
       all &= ok;
     }
     open &= ~(left & ~all);
@@ -408,11 +414,11 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
   }
   // Self pairs: the pair's table flag, or the slot spheres apart, or every ball of one cover
   // apart from the other's sphere or from every ball of its cover.
-  auto apart = [](const Point& a, float ra, const Point& b, float rb) {
+  auto apart = [wide](const Point& a, float ra, const Point& b, float rb) {
     const F8 dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
     const F8 d2 = (dx * dx + dy * dy) + dz * dz;
     const float r = ra + rb;
-    return lanes::laneBits(d2 > r * r * (1.0f + 1e-5f) ? I8{} - 1 : I8{});
+    return lanes::laneBits(lanes::greater(d2, lanes::broadcast(r * r * (1.0f + 1e-5f)), wide));
   };
   // The lanes of `lanes` where every element box of slot a is apart from every one of slot b.
   const float box_gap = static_cast<float>(self_padding_ * (1.0 + 1e-6));

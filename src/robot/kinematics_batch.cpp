@@ -67,20 +67,21 @@ KinematicsBatch::KinematicsBatch(const Kinematics& kin) : updated_(kin.updated_)
 
 namespace {
 
+using lanes::D4;
 using lanes::F8;
 using lanes::I8;
 using lanes::kLanes;
+using lanes::L4;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // The angles of one joint in the lanes, reduced by pi/2 in double (the kinematics' split of
 // pi/2), four lanes at a time: r in [-pi/4, pi/4] as floats and the quadrant k mod 4; NaN
-// beyond 1e5 rad (and for NaN).
-using D4 = double __attribute__((vector_size(32)));
-using L4 = std::int64_t __attribute__((vector_size(32)));
+// beyond 1e5 rad (and for NaN). `wide`: compiled for AVX2 (lanes.h).
 __attribute__((always_inline)) inline void reduceAngles(const double* q, double multiplier,
-                                                        double offset, float* r, std::int32_t* k) {
+                                                        double offset, float* r, std::int32_t* k,
+                                                        bool wide) {
   constexpr double kPio2Hi = 0x1.921fb544p+0;
   constexpr double kPio2Mid = 0x1.0b46p-34;
   constexpr double kPio2Lo = 6.123233995736766e-17;
@@ -92,9 +93,8 @@ __attribute__((always_inline)) inline void reduceAngles(const double* q, double 
     const D4 shifted = x * (2.0 / M_PI) + kRound;
     const D4 kd = shifted - kRound;
     const D4 rd = ((x - kd * kPio2Hi) - kd * kPio2Mid) - kd * kPio2Lo;
-    const D4 ax = x < 0.0 ? -x : x;
-    const L4 ok = ax <= 1e5;  // false for NaN
-    const D4 rs = ok ? rd : D4{} + NAN;
+    const L4 ok = lanes::lessEqual(lanes::abs(x), D4{} + 1e5, wide);  // false for NaN
+    const D4 rs = lanes::select(ok, rd, D4{} + NAN, wide);
     const L4 quadrant = (L4)shifted & ok;  // the low bits of the integer
     for (int l = 0; l < 4; ++l) {
       r[h + l] = static_cast<float>(rs[l]);
@@ -130,7 +130,8 @@ __attribute__((always_inline)) inline void sinCos(const float* r_in, const std::
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-__attribute__((always_inline)) inline void KinematicsBatch::run(const double* q, Pose* X) const {
+__attribute__((always_inline)) inline void KinematicsBatch::run(const double* q, Pose* X,
+                                                                bool wide) const {
   float r[kLanes];
   std::int32_t k[kLanes];
   for (int e = 0; e < 12; ++e) lanes::store(X[root_].v[e], lanes::broadcast(base_[e / 3][e % 3]));
@@ -159,7 +160,7 @@ __attribute__((always_inline)) inline void KinematicsBatch::run(const double* q,
       if (s.m[3][k] != 0.0f)
         for (int i = 0; i < 3; ++i) c[3][i] = c[3][i] + a[k][i] * s.m[3][k];
     if (s.motion != 0) {
-      reduceAngles(q + s.q_index * kLanes, s.multiplier, s.offset, r, k);
+      reduceAngles(q + s.q_index * kLanes, s.multiplier, s.offset, r, k, wide);
       F8 sn, cs;
       sinCos(r, k, sn, cs);
       if (s.motion <= 3) {
@@ -193,9 +194,11 @@ __attribute__((always_inline)) inline void KinematicsBatch::run(const double* q,
   }
 }
 
-void KinematicsBatch::computeGeneric(const double* q, Pose* X) const { run(q, X); }
+void KinematicsBatch::computeGeneric(const double* q, Pose* X) const { run(q, X, false); }
 
-DSS_TARGET_AVX2 void KinematicsBatch::computeAvx2(const double* q, Pose* X) const { run(q, X); }
+DSS_TARGET_AVX2 void KinematicsBatch::computeAvx2(const double* q, Pose* X) const {
+  run(q, X, true);
+}
 
 #pragma GCC diagnostic pop
 

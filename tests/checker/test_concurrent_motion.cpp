@@ -116,11 +116,12 @@ BOOST_AUTO_TEST_CASE(four_threads_agree_with_one) {
 // The vector motion check's batches (StateChecker::freeStates) from four threads at once: the
 // same verdicts, last valid fractions and proven lanes as one thread, the counters four times
 // its own.
-BOOST_AUTO_TEST_CASE(four_threads_share_the_batches) {
+BOOST_AUTO_TEST_CASE(four_threads_share_the_batches, DSS_NEEDS_BATCHES) {
   const dss::LoadedRobot robot = dss_test::loadArm();
   const dss::ModelSetup setup = dss_test::shelfSetup(robot);
   const auto checker = std::make_shared<const dss::DssChecker>(setup.model);
   const dss::DiscreteMotionChecker batched(checker, true);
+  BOOST_REQUIRE(batched.batched());
   const dss::CollisionModel& m = *setup.model;
   std::mt19937_64 rng(777);
   std::vector<Motion> motions(160);

@@ -3,6 +3,7 @@
 // random states of a model's group.
 #pragma once
 
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <map>
 #include <random>
@@ -11,11 +12,22 @@
 #include <vector>
 
 #include "dss/checker/checker_setup.h"
+#include "dss/core/simd_path.h"
 #include "dss/robot/multi_dof.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
 
 namespace dss_test {
+
+/// A precondition for the cases about batched motion checks, which batch only where the
+/// batches pay (on the AVX2 path: StateChecker::batchesPay): Boost.Test reports them skipped
+/// on a CPU without AVX2 or with DSS_SIMD forcing another path.
+inline boost::test_tools::assertion_result batchesRun(boost::unit_test::test_unit_id) {
+  boost::test_tools::assertion_result r(dss::activeSimdPath() == dss::SimdPath::kAvx2);
+  r.message() << "not on the AVX2 path: motion checks do not batch";
+  return r;
+}
+#define DSS_NEEDS_BATCHES *boost::unit_test::precondition(dss_test::batchesRun)
 
 inline const std::string kArmDir = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
 inline const std::string kPandaDir = std::string(DSS_SHARED_DIR) + "/robots/panda";

@@ -118,7 +118,8 @@ unsigned freeInterpolated(const StateChecker& checker, const double* a, const do
 class DiscreteMotionChecker {
  public:
   /// Throws std::invalid_argument for a null checker. `batched`: states decided in batches
-  /// where the checker proves them free (motionStatesFreeBatched), the same verdicts.
+  /// where the checker proves them free (motionStatesFreeBatched), the same verdicts, when
+  /// its batches pay (StateChecker::batchesPay); otherwise one by one, as without it.
   explicit DiscreteMotionChecker(std::shared_ptr<const StateChecker> checker, bool batched = false);
 
   /// True when the straight joint-space motion from q0 to q1 (active joint values) is free at
@@ -133,6 +134,7 @@ class DiscreteMotionChecker {
              MotionOrder kind = MotionOrder::kEndFirst) const;
 
   const StateChecker& checker() const { return *checker_; }
+  /// Whether states go in batches: asked for, and the checker's batches pay.
   bool batched() const { return batched_; }
 
  private:

@@ -57,6 +57,10 @@ class DssChecker : public StateChecker {
   void setBatchPath(SimdPath path) { batch_path_ = path; }
   SimdPath batchPath() const { return batch_path_; }
   const StateBatch& batch() const { return batch_; }
+  /// An enabled batch on the AVX2 path (where the CPU has it).
+  bool batchesPay() const override {
+    return batch_.enabled() && batch_path_ == SimdPath::kAvx2 && simdPathAvailable(SimdPath::kAvx2);
+  }
 
  private:
   bool collidesWithinBounds(const double* q, CounterSlots::Slot& counters) const override;

@@ -58,6 +58,11 @@ class StateChecker {
     }
     return free;
   }
+  /// Whether freeLanes' batches cost less than the exact checks they spare, so that a motion
+  /// check should hand its states to them: a checker with an AVX2 batched pass. On the generic
+  /// lanes (SSE2, or NEON elsewhere) a batch of eight states costs about as much as the exact
+  /// checks of the six or seven it proves (docs/performance.md).
+  virtual bool batchesPay() const { return false; }
   /// Colliding or invalid: what a planner must avoid.
   bool collides(const double* q) const { return check(q) != StateVerdict::kFree; }
 

@@ -1,6 +1,13 @@
 // Eight float lanes (one AVX register in a function compiled for AVX2, two SSE2 registers
 // otherwise) and the helpers the batched passes share: kinematics_batch.h and state_batch.h
 // compute one state per lane with the compiler's generic vectors, element by element.
+//
+// Arithmetic and bitwise operations on the 256-bit vectors compile to two 128-bit operations
+// where the target has no 256-bit vectors (the generic build: SSE2, NEON), but comparisons and
+// selections by `?:` compile lane by lane there, with branches. The batched passes therefore
+// compare through less() and the like, which take `wide` (the function is compiled for AVX2)
+// and otherwise compare the two halves four lanes at a time, and select by select(): the same
+// results either way.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +22,9 @@ namespace dss::lanes {
 constexpr int kLanes = 8;
 using F8 = float __attribute__((vector_size(32)));
 using I8 = std::int32_t __attribute__((vector_size(32)));
+/// Four double lanes, and their comparisons' masks.
+using D4 = double __attribute__((vector_size(32)));
+using L4 = std::int64_t __attribute__((vector_size(32)));
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -40,6 +50,71 @@ __attribute__((always_inline)) inline unsigned laneBits(I8 m) {
   return bits;
 #endif
 }
+
+namespace detail {
+using F4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+using D2 = double __attribute__((vector_size(16)));
+using L2 = std::int64_t __attribute__((vector_size(16)));
+template <class Half, class Whole>
+__attribute__((always_inline)) inline void split(const Whole& w, Half& lo, Half& hi) {
+  static_assert(2 * sizeof(Half) == sizeof(Whole));
+  std::memcpy(&lo, &w, sizeof lo);
+  std::memcpy(&hi, reinterpret_cast<const char*>(&w) + sizeof lo, sizeof hi);
+}
+template <class Whole, class Half>
+__attribute__((always_inline)) inline Whole join(const Half& lo, const Half& hi) {
+  static_assert(2 * sizeof(Half) == sizeof(Whole));
+  Whole w;
+  std::memcpy(&w, &lo, sizeof lo);
+  std::memcpy(reinterpret_cast<char*>(&w) + sizeof lo, &hi, sizeof hi);
+  return w;
+}
+}  // namespace detail
+
+/// a < b per lane: all ones where true, else zero (false for NaN).
+__attribute__((always_inline)) inline I8 less(F8 a, F8 b, bool wide) {
+  if (wide) return a < b;
+  detail::F4 a0, a1, b0, b1;
+  detail::split(a, a0, a1);
+  detail::split(b, b0, b1);
+  return detail::join<I8>(detail::I4(a0 < b0), detail::I4(a1 < b1));
+}
+__attribute__((always_inline)) inline I8 less(I8 a, I8 b, bool wide) {
+  if (wide) return a < b;
+  detail::I4 a0, a1, b0, b1;
+  detail::split(a, a0, a1);
+  detail::split(b, b0, b1);
+  return detail::join<I8>(detail::I4(a0 < b0), detail::I4(a1 < b1));
+}
+__attribute__((always_inline)) inline L4 lessEqual(D4 a, D4 b, bool wide) {
+  if (wide) return a <= b;
+  detail::D2 a0, a1, b0, b1;
+  detail::split(a, a0, a1);
+  detail::split(b, b0, b1);
+  return detail::join<L4>(detail::L2(a0 <= b0), detail::L2(a1 <= b1));
+}
+/// a > b per lane.
+__attribute__((always_inline)) inline I8 greater(F8 a, F8 b, bool wide) { return less(b, a, wide); }
+__attribute__((always_inline)) inline I8 greater(I8 a, I8 b, bool wide) { return less(b, a, wide); }
+/// a where mask m is all ones, b where it is zero.
+__attribute__((always_inline)) inline F8 select(I8 m, F8 a, F8 b, bool wide) {
+  if (wide) return m ? a : b;
+  return (F8)(((I8)a & m) | ((I8)b & ~m));
+}
+__attribute__((always_inline)) inline D4 select(L4 m, D4 a, D4 b, bool wide) {
+  if (wide) return m ? a : b;
+  return (D4)(((L4)a & m) | ((L4)b & ~m));
+}
+/// |v| per lane, by its sign bit (NaN stays NaN; -0 becomes +0, which compares and sums as -0
+/// does wherever the passes use it).
+__attribute__((always_inline)) inline F8 abs(F8 v) {
+  return (F8)((I8)v & std::int32_t(0x7fffffff));
+}
+__attribute__((always_inline)) inline D4 abs(D4 v) {
+  return (D4)((L4)v & std::int64_t(0x7fffffffffffffff));
+}
+
 #pragma GCC diagnostic pop
 
 }  // namespace dss::lanes

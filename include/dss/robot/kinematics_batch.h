@@ -60,7 +60,8 @@ class KinematicsBatch {
     double multiplier = 1.0, offset = 0.0;
     float axis[3] = {0, 0, 0};
   };
-  void run(const double* q, Pose* X) const;
+  /// `wide`: compiled for AVX2 (lanes.h).
+  void run(const double* q, Pose* X, bool wide) const;
   void computeGeneric(const double* q, Pose* X) const;
   void computeAvx2(const double* q, Pose* X) const;
 
