@@ -24,7 +24,7 @@ KinematicsBatch::KinematicsBatch(const Kinematics& kin) : updated_(kin.updated_)
     b.perm = s.perm;
     for (int j = 0; j < 3; ++j) {
       b.col[j] = s.col[j];
-      b.negate[j] = s.sign[j] < 0.0;
+      b.flip[j] = s.sign[j] < 0.0 ? std::int32_t(0x80000000u) : 0;
     }
     reach += std::sqrt(s.m[3][0] * s.m[3][0] + s.m[3][1] * s.m[3][1] + s.m[3][2] * s.m[3][2]);
     if (s.num_shifts > 0) supported_ = false;
@@ -136,57 +136,69 @@ __attribute__((always_inline)) inline void KinematicsBatch::run(const double* q,
   std::int32_t k[kLanes];
   for (int e = 0; e < 12; ++e) lanes::store(X[root_].v[e], lanes::broadcast(base_[e / 3][e % 3]));
   for (const Step& s : steps_) {
-    // [c | p] = [a | at] [R_c | p_c], then the joint's rotation.
-    F8 a[4][3];
-    if (s.ref < 0) {
-      for (int e = 0; e < 12; ++e) a[e / 3][e % 3] = lanes::broadcast(base_[e / 3][e % 3]);
-    } else {
-      const Pose& A = X[s.ref];
-      for (int e = 0; e < 12; ++e) a[e / 3][e % 3] = lanes::load(A.v[e]);
-    }
+    // [c | p] = [a | at] [R_c | p_c], then the joint's rotation. The parent's pose is read
+    // from X (the base pose from X[root_]), entry by entry where it is used.
+    const Pose& A = X[s.ref < 0 ? root_ : s.ref];
+    auto a = [&A](int col, int i) { return lanes::load(A.v[3 * col + i]); };
     F8 c[4][3];
     if (s.perm) {
-      // A signed permutation (kinematics.h): columns selected, no product.
-      for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) c[j][i] = s.negate[j] ? -a[s.col[j]][i] : a[s.col[j]][i];
+      // A signed permutation (kinematics.h): columns selected, no product; a negated column's
+      // sign bits flipped, as negation does.
+      for (int j = 0; j < 3; ++j) {
+        const I8 flip = I8{} + s.flip[j];
+        for (int i = 0; i < 3; ++i) c[j][i] = (F8)((I8)a(s.col[j], i) ^ flip);
+      }
     } else {
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i)
-          c[j][i] = a[0][i] * s.m[j][0] + a[1][i] * s.m[j][1] + a[2][i] * s.m[j][2];
+          c[j][i] = a(0, i) * s.m[j][0] + a(1, i) * s.m[j][1] + a(2, i) * s.m[j][2];
     }
     // The translation's zero terms left out: adding a zero product leaves a finite sum as it is.
-    for (int i = 0; i < 3; ++i) c[3][i] = a[3][i];
+    for (int i = 0; i < 3; ++i) c[3][i] = a(3, i);
     for (int k = 0; k < 3; ++k)
       if (s.m[3][k] != 0.0f)
-        for (int i = 0; i < 3; ++i) c[3][i] = c[3][i] + a[k][i] * s.m[3][k];
+        for (int i = 0; i < 3; ++i) c[3][i] = c[3][i] + a(k, i) * s.m[3][k];
     if (s.motion != 0) {
       reduceAngles(q + s.q_index * kLanes, s.multiplier, s.offset, r, k, wide);
       F8 sn, cs;
       sinCos(r, k, sn, cs);
-      if (s.motion <= 3) {
-        // About axis x, y or z: columns (1, 2), (2, 0) or (0, 1) mix.
-        const int ca = s.motion % 3, cb = (s.motion + 1) % 3;
+      // About axis x, y or z: columns (1, 2), (2, 0) or (0, 1) mix (each case with its own
+      // columns, so that c stays in registers).
+      auto turn = [&cs, &sn](F8* x, F8* y) {
         for (int i = 0; i < 3; ++i) {
-          const F8 x = c[ca][i], y = c[cb][i];
-          c[ca][i] = cs * x + sn * y;
-          c[cb][i] = cs * y - sn * x;
+          const F8 u = x[i], v = y[i];
+          x[i] = cs * u + sn * v;
+          y[i] = cs * v - sn * u;
         }
-      } else {
-        // About a unit axis: M = cos I + sin [axis]x + (1 - cos) axis axis^T; column j of the
-        // pose becomes sum_i M(i, j) column i.
-        const float ax = s.axis[0], ay = s.axis[1], az = s.axis[2];
-        const F8 t = 1.0f - cs;
-        F8 M[3][3];
-        M[0][0] = cs + t * (ax * ax), M[1][1] = cs + t * (ay * ay), M[2][2] = cs + t * (az * az);
-        M[0][1] = t * (ax * ay) - sn * az, M[1][0] = t * (ax * ay) + sn * az;
-        M[0][2] = t * (ax * az) + sn * ay, M[2][0] = t * (ax * az) - sn * ay;
-        M[1][2] = t * (ay * az) - sn * ax, M[2][1] = t * (ay * az) + sn * ax;
-        F8 x[3][3];
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) x[j][i] = c[j][i];
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i)
-            c[j][i] = x[0][i] * M[0][j] + x[1][i] * M[1][j] + x[2][i] * M[2][j];
+      };
+      switch (s.motion) {
+        case 1:
+          turn(c[1], c[2]);
+          break;
+        case 2:
+          turn(c[2], c[0]);
+          break;
+        case 3:
+          turn(c[0], c[1]);
+          break;
+        default: {
+          // About a unit axis: M = cos I + sin [axis]x + (1 - cos) axis axis^T; column j of
+          // the pose becomes sum_i M(i, j) column i.
+          const float ax = s.axis[0], ay = s.axis[1], az = s.axis[2];
+          const F8 t = 1.0f - cs;
+          F8 M[3][3];
+          M[0][0] = cs + t * (ax * ax), M[1][1] = cs + t * (ay * ay), M[2][2] = cs + t * (az * az);
+          M[0][1] = t * (ax * ay) - sn * az, M[1][0] = t * (ax * ay) + sn * az;
+          M[0][2] = t * (ax * az) + sn * ay, M[2][0] = t * (ax * az) - sn * ay;
+          M[1][2] = t * (ay * az) - sn * ax, M[2][1] = t * (ay * az) + sn * ax;
+          F8 x[3][3];
+          for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) x[j][i] = c[j][i];
+          for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i)
+              c[j][i] = x[0][i] * M[0][j] + x[1][i] * M[1][j] + x[2][i] * M[2][j];
+          break;
+        }
       }
     }
     Pose& C = X[s.link];

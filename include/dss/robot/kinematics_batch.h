@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "dss/core/simd_path.h"
@@ -51,7 +52,7 @@ class KinematicsBatch {
     float m[4][3];      ///< the constant frame, as Kinematics::Step::m
     bool perm = false;  ///< its rotation a signed permutation: column j is +-column col[j]
     int col[3] = {0, 1, 2};
-    bool negate[3] = {false, false, false};
+    std::int32_t flip[3] = {0, 0, 0};  ///< the sign bit where column j is negated, else 0
     int link = -1;
     int ref = -1;  ///< -1: the base pose
     /// 0: fixed; 1, 2, 3: rotation about x, y, z; 4: about `axis`
