@@ -274,6 +274,32 @@ DSS_TARGET_AVX2 void laneIndicesAvx2(const SelfPairTable& t, const double* lanes
     _mm_storeu_si128(reinterpret_cast<__m128i*>(idx + h), index);
   }
 }
+
+// A group's packed cells for eight lanes on AVX2 (cells of table t, the group's first): bit l
+// of *colliding where lane l's byte has a colliding cell, bit l of free_bits[k] where table k's
+// cell is free (bytes as SelfPairTables::colliding and free read them; a lane outside the
+// range reads nothing).
+DSS_TARGET_AVX2 void groupLanesAvx2(const SelfPairTable& t, const std::uint8_t* packed, int count,
+                                    const double* lanes, unsigned* colliding, unsigned* free_bits) {
+  std::int32_t idx[8];
+  laneIndicesAvx2(t, lanes, idx);
+  std::int32_t b[8];
+  for (int l = 0; l < 8; ++l) b[l] = idx[l] < 0 ? 0 : packed[std::size_t(idx[l])];
+  const __m256i v = _mm256_setr_epi32(b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]);
+  const __m256i zero = _mm256_setzero_si256();
+  // byte & 0xAA & ~(byte << 1), and byte & 0x55 & ~(byte >> 1).
+  const __m256i coll =
+      _mm256_andnot_si256(_mm256_slli_epi32(v, 1), _mm256_and_si256(v, _mm256_set1_epi32(0xAA)));
+  const __m256i fr =
+      _mm256_andnot_si256(_mm256_srli_epi32(v, 1), _mm256_and_si256(v, _mm256_set1_epi32(0x55)));
+  *colliding =
+      ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(coll, zero)))) & 0xFFu;
+  for (int k = 0; k < count; ++k) {
+    const __m256i bit = _mm256_set1_epi32(1 << (2 * k));
+    free_bits[k] = unsigned(_mm256_movemask_ps(
+        _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(fr, bit), bit))));
+  }
+}
 }  // namespace
 #endif
 
@@ -290,19 +316,23 @@ unsigned SelfPairTables::readLanes(const double* lanes, unsigned states, double 
   unsigned colliding_states = 0;
   for (const Group& g : groups_) {
     const SelfPairTable& t = tables_[std::size_t(g.first)];
-    std::int32_t idx[kLanes];
-#if defined(__x86_64__) || defined(__i386__)
-    if (avx2) laneIndicesAvx2(t, lanes, idx);
-#endif
     unsigned free_bits[4] = {0, 0, 0, 0};  // per table of the group, bit l for state l
+#if defined(__x86_64__) || defined(__i386__)
+    if (avx2) {
+      unsigned coll = 0;
+      groupLanesAvx2(t, g.packed.data(), g.count, lanes, &coll, free_bits);
+      if (use_colliding) colliding_states |= coll & states;
+      if (use_free)
+        for (int k = 0; k < g.count; ++k) skip[g.first + k] |= free_bits[k] & states;
+      continue;
+    }
+#endif
     for (unsigned left = states; left; left &= left - 1) {
       const int l = __builtin_ctz(left);
-      if (!avx2) {
-        double v[2];
-        for (int k = 0; k < t.num_vars; ++k) v[k] = lanes[std::size_t(t.var[k]) * kLanes + l];
-        idx[l] = t.indexOf(v);
-      }
-      const unsigned byte = idx[l] < 0 ? 0u : g.packed[std::size_t(idx[l])];
+      double v[2];
+      for (int k = 0; k < t.num_vars; ++k) v[k] = lanes[std::size_t(t.var[k]) * kLanes + l];
+      const int idx = t.indexOf(v);
+      const unsigned byte = idx < 0 ? 0u : g.packed[std::size_t(idx)];
       if (use_colliding && colliding(byte)) colliding_states |= 1u << l;
       const unsigned f = use_free ? free(byte) : 0u;
       for (int k = 0; k < g.count; ++k) free_bits[k] |= ((f >> (2 * k)) & 1u) << l;
