@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <functional>
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -72,27 +73,27 @@ __attribute__((always_inline)) inline Whole join(const Half& lo, const Half& hi)
 }
 }  // namespace detail
 
+namespace detail {
+/// op(a, b) per lane: on the whole vectors where `wide`, else on their two halves.
+template <class Mask, class HalfMask, class Half, class Whole, class Op>
+__attribute__((always_inline)) inline Mask compare(Whole a, Whole b, bool wide, Op op) {
+  if (wide) return op(a, b);
+  Half a0, a1, b0, b1;
+  split(a, a0, a1);
+  split(b, b0, b1);
+  return join<Mask>(HalfMask(op(a0, b0)), HalfMask(op(a1, b1)));
+}
+}  // namespace detail
+
 /// a < b per lane: all ones where true, else zero (false for NaN).
 __attribute__((always_inline)) inline I8 less(F8 a, F8 b, bool wide) {
-  if (wide) return a < b;
-  detail::F4 a0, a1, b0, b1;
-  detail::split(a, a0, a1);
-  detail::split(b, b0, b1);
-  return detail::join<I8>(detail::I4(a0 < b0), detail::I4(a1 < b1));
+  return detail::compare<I8, detail::I4, detail::F4>(a, b, wide, std::less<>());
 }
 __attribute__((always_inline)) inline I8 less(I8 a, I8 b, bool wide) {
-  if (wide) return a < b;
-  detail::I4 a0, a1, b0, b1;
-  detail::split(a, a0, a1);
-  detail::split(b, b0, b1);
-  return detail::join<I8>(detail::I4(a0 < b0), detail::I4(a1 < b1));
+  return detail::compare<I8, detail::I4, detail::I4>(a, b, wide, std::less<>());
 }
 __attribute__((always_inline)) inline L4 lessEqual(D4 a, D4 b, bool wide) {
-  if (wide) return a <= b;
-  detail::D2 a0, a1, b0, b1;
-  detail::split(a, a0, a1);
-  detail::split(b, b0, b1);
-  return detail::join<L4>(detail::L2(a0 <= b0), detail::L2(a1 <= b1));
+  return detail::compare<L4, detail::L2, detail::D2>(a, b, wide, std::less_equal<>());
 }
 /// a > b per lane.
 __attribute__((always_inline)) inline I8 greater(F8 a, F8 b, bool wide) { return less(b, a, wide); }
