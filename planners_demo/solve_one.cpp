@@ -14,6 +14,7 @@
 
 #include "dss/core/simd_path.h"
 #include "dss/planning/continuous_motion_validator.h"
+#include "dss/planning/discrete_motion_validator.h"
 #include "dss/planning/vector_nearest_neighbors.h"
 #include "dss/robot/joint_states_csv.h"
 #include "invalid_state.h"
@@ -167,6 +168,19 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
+  if (const auto* dmv = dynamic_cast<const dss::DiscreteMotionValidator*>(mv.get())) {
+    // Where the checks went: motions towards new states, and from a state just found free
+    // towards a held one (RRTConnect's connections).
+    auto kind = [dmv](dss::MotionOrder order) {
+      const dss::MotionCounts c = dmv->counts(order);
+      return nlohmann::json{{"motions", c.motions},
+                            {"colliding", c.colliding},
+                            {"exact_states", c.exact_states},
+                            {"batch_free_states", c.batch_free_states}};
+    };
+    j["motions_to_new"] = kind(dss::MotionOrder::kEndFirst);
+    j["motions_to_held"] = kind(dss::MotionOrder::kEndLast);
+  }
   if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why.text;
   if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why.text;
   std::cout << j.dump() << std::endl;

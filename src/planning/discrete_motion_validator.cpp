@@ -65,6 +65,7 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
   const int segments = n < 1 ? 1 : n;
   const ValidityChecker* vc = decidingChecker(si.getStateValidityChecker().get());
   const MotionOrder kind = motionOrderFrom(vc, s1);
+  std::uint64_t exact = 0, proven = 0;  // this motion's states, one by one and by batches
   bool ok;
   if (directPath(vc)) {
     const StateChecker& checker = vc->checker();
@@ -78,13 +79,18 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
     const double *a = q0.data(), *b = q1.data();
     double* const qs = q.data();
     auto free = [&](int j) {
+      ++exact;
       if (j == segments) return si.isValid(s2);
       const double t = double(j) / double(n);
       for (std::size_t k = 0; k < nq; ++k) qs[k] = a[k] + (b[k] - a[k]) * t;
       return !checker.collides(qs);
     };
     if (motion_->batched()) {
-      auto batch = [&](const int* js, int m) { return freeInterpolated(checker, a, b, n, js, m); };
+      auto batch = [&](const int* js, int m) {
+        const unsigned lanes = freeInterpolated(checker, a, b, n, js, m);
+        proven += static_cast<std::uint64_t>(__builtin_popcount(lanes));
+        return lanes;
+      };
       ok = motionStatesFreeBatched(segments, free, batch, first_colliding, kind);
     } else {
       ok = motionStatesFree(segments, free, first_colliding, kind);
@@ -93,14 +99,38 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
     const ob::StateSpacePtr& space = si.getStateSpace();
     ob::State* test = scratchState(space);
     auto free = [&](int j) {
+      ++exact;
       if (j == segments) return si.isValid(s2);
       space->interpolate(s1, s2, double(j) / double(n), test);
       return si.isValid(test);
     };
     ok = motionStatesFree(segments, free, first_colliding, kind);
   }
-  (ok ? valid_motions_ : invalid_motions_).fetch_add(1, std::memory_order_relaxed);
+  std::atomic<std::uint64_t>* const c = kind_counts_[kind == MotionOrder::kEndLast];
+  c[0].fetch_add(1, std::memory_order_relaxed);
+  if (!ok) c[1].fetch_add(1, std::memory_order_relaxed);
+  c[2].fetch_add(exact, std::memory_order_relaxed);
+  if (proven) c[3].fetch_add(proven, std::memory_order_relaxed);
   return ok;
+}
+
+std::uint64_t DiscreteMotionValidator::validMotions() const {
+  const MotionCounts a = counts(MotionOrder::kEndFirst), b = counts(MotionOrder::kEndLast);
+  return (a.motions - a.colliding) + (b.motions - b.colliding);
+}
+
+std::uint64_t DiscreteMotionValidator::invalidMotions() const {
+  return counts(MotionOrder::kEndFirst).colliding + counts(MotionOrder::kEndLast).colliding;
+}
+
+MotionCounts DiscreteMotionValidator::counts(MotionOrder kind) const {
+  const std::atomic<std::uint64_t>* const c = kind_counts_[kind == MotionOrder::kEndLast];
+  MotionCounts out;
+  out.motions = c[0].load(std::memory_order_relaxed);
+  out.colliding = c[1].load(std::memory_order_relaxed);
+  out.exact_states = c[2].load(std::memory_order_relaxed);
+  out.batch_free_states = c[3].load(std::memory_order_relaxed);
+  return out;
 }
 
 }  // namespace dss

@@ -5,7 +5,8 @@
 // floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator gives
 // OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
 // without the direct joint-value path, in both orders; the validity checker knows the last state
-// it found free; a checker that forwards to ours is looked through (the same states asked).
+// it found free; a checker that forwards to ours is looked through (the same states asked); the
+// counts per kind of motion take every motion once and every state of it at most once.
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/StateValidityChecker.h>
@@ -308,6 +309,76 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_our_robots) {
       // The vector validator decides states in batches on the arm (a plain joint space), where
       // the batches pay (an AVX2 CPU).
       const std::uint64_t batch_free = (c.checker->checker().counters() - before).batch_free;
+      BOOST_TEST((batch_free > 0u) ==
+                     (batched && c.name == "dss_arm7" && c.checker->checker().batchesPay()),
+                 c.name);
+    }
+}
+
+BOOST_AUTO_TEST_CASE(the_counts_take_every_motion_and_state_once) {
+  std::vector<Case> cases;
+  cases.push_back(ourCase("dss_arm7", "shelf"));         // the direct path (and batches)
+  cases.push_back(ourCase("dss_free_flyer", "window"));  // the space's interpolation
+  for (const Case& c : cases)
+    for (const bool batched : {false, true}) {
+      const auto ours = dss::makeDiscreteMotionValidator(c.p, *c.checker, batched);
+      const ob::SpaceInformationPtr& si = c.p.si;
+      const ob::StateSpacePtr& space = si->getStateSpace();
+      std::mt19937_64 rng(17);
+      ob::ScopedState<> a(space), b(space), far(space), other(space), lv(space);
+      auto validState = [&](ob::State* s) {
+        for (int tries = 0; tries < 1000; ++tries) {
+          randomState(c, rng, s);
+          if (si->isValid(s)) return true;
+        }
+        return false;
+      };
+      std::uint64_t batch_free = 0, colliding = 0;
+      for (int m = 0; m < 300; ++m) {
+        BOOST_TEST_REQUIRE(validState(a.get()));
+        randomState(c, rng, far.get());
+        space->interpolate(a.get(), far.get(), 0.3 * std::uniform_real_distribution<>()(rng),
+                           b.get());
+        // From the state just found free (a connection), or after another one (an extension).
+        const dss::MotionOrder kind =
+            m % 2 == 0 ? dss::MotionOrder::kEndLast : dss::MotionOrder::kEndFirst;
+        const dss::MotionOrder other_kind =
+            m % 2 == 0 ? dss::MotionOrder::kEndFirst : dss::MotionOrder::kEndLast;
+        if (kind == dss::MotionOrder::kEndFirst) BOOST_TEST_REQUIRE(validState(other.get()));
+        const dss::MotionCounts before = ours->counts(kind);
+        const dss::MotionCounts other_before = ours->counts(other_kind);
+        std::pair<ob::State*, double> last{lv.get(), 0.0};
+        const bool ok = m % 3 == 0 ? ours->checkMotion(a.get(), b.get(), last)
+                                   : ours->checkMotion(a.get(), b.get());
+        const dss::MotionCounts after = ours->counts(kind);
+        const std::uint64_t n = std::max(1u, space->validSegmentCount(a.get(), b.get()));
+        const std::uint64_t exact = after.exact_states - before.exact_states;
+        const std::uint64_t proven = after.batch_free_states - before.batch_free_states;
+        BOOST_TEST(after.motions == before.motions + 1, c.name << " motion " << m);
+        BOOST_TEST(after.colliding == before.colliding + (ok ? 0u : 1u), c.name << " motion " << m);
+        // Every state of a free motion once, either way; a colliding motion ends on a state
+        // decided one by one, and decides no state twice.
+        if (ok)
+          BOOST_TEST(exact + proven == n, c.name << " motion " << m);
+        else
+          BOOST_TEST((exact >= 1u && exact + proven <= n), c.name << " motion " << m);
+        const dss::MotionCounts other_after = ours->counts(other_kind);
+        BOOST_TEST(other_after.motions == other_before.motions, c.name << " motion " << m);
+        BOOST_TEST(other_after.exact_states == other_before.exact_states);
+        batch_free += proven;
+        colliding += ok ? 0u : 1u;
+      }
+      const dss::MotionCounts first = ours->counts(dss::MotionOrder::kEndFirst);
+      const dss::MotionCounts held = ours->counts(dss::MotionOrder::kEndLast);
+      BOOST_TEST(first.motions == 150u);
+      BOOST_TEST(held.motions == 150u);
+      BOOST_TEST(first.motions + held.motions == dss::motionChecks(*ours));
+      BOOST_TEST(first.colliding + held.colliding == colliding);
+      BOOST_TEST(ours->invalidMotions() == colliding);
+      BOOST_TEST(ours->validMotions() == 300u - colliding);
+      BOOST_TEST(colliding > 10u, c.name);  // both verdicts occur
+      BOOST_TEST(colliding < 290u, c.name);
+      // Batches only in the vector validator on the arm, where they pay (an AVX2 CPU).
       BOOST_TEST((batch_free > 0u) ==
                      (batched && c.name == "dss_arm7" && c.checker->checker().batchesPay()),
                  c.name);

@@ -15,7 +15,9 @@
 // virtual call; otherwise the space interpolates them and the space information's validity
 // checker decides them. The end state always goes through the space information's validity
 // checker, as in OMPL. Motion counts are atomic (OMPL's own counters are not safe to increment
-// from several threads).
+// from several threads), also per kind of motion (towards a new state, or from a state just found
+// free towards a held one: MotionOrder), with the states each kind had checked one by one and
+// those batches proved free: where a plan's checking goes.
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
@@ -32,6 +34,16 @@ namespace dss {
 
 class ValidityChecker;
 
+/// One kind of motion's counts (DiscreteMotionValidator::counts).
+struct MotionCounts {
+  std::uint64_t motions = 0;    ///< checked
+  std::uint64_t colliding = 0;  ///< of them found colliding
+  /// States decided one by one (each state checker call, the end state's included), and states
+  /// proven free by batches (StateChecker::freeLanes) and so never checked one by one.
+  std::uint64_t exact_states = 0;
+  std::uint64_t batch_free_states = 0;
+};
+
 class DiscreteMotionValidator : public ompl::base::MotionValidator {
  public:
   DiscreteMotionValidator(const ompl::base::SpaceInformationPtr& si,
@@ -43,8 +55,12 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
   const DiscreteMotionChecker& motionChecker() const { return *motion_; }
-  std::uint64_t validMotions() const { return valid_motions_.load(std::memory_order_relaxed); }
-  std::uint64_t invalidMotions() const { return invalid_motions_.load(std::memory_order_relaxed); }
+  std::uint64_t validMotions() const;
+  std::uint64_t invalidMotions() const;
+  /// The counts of the motions checked in `kind` order so far: kEndLast, motions from the state
+  /// the validity checker has just found free (in order from the start when lastValid is
+  /// wanted); kEndFirst, every other one.
+  MotionCounts counts(MotionOrder kind) const;
 
  private:
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
@@ -56,7 +72,8 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
 
   std::shared_ptr<const DiscreteMotionChecker> motion_;
   std::shared_ptr<const GroupStateMap> map_;
-  mutable std::atomic<std::uint64_t> valid_motions_{0}, invalid_motions_{0};
+  /// Per kind (kEndFirst, kEndLast): MotionCounts' four fields.
+  mutable std::atomic<std::uint64_t> kind_counts_[2][4] = {};
 };
 
 }  // namespace dss
