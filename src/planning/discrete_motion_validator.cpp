@@ -106,11 +106,11 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
     };
     ok = motionStatesFree(segments, free, first_colliding, kind);
   }
-  std::atomic<std::uint64_t>* const c = kind_counts_[kind == MotionOrder::kEndLast];
-  c[0].fetch_add(1, std::memory_order_relaxed);
-  if (!ok) c[1].fetch_add(1, std::memory_order_relaxed);
-  c[2].fetch_add(exact, std::memory_order_relaxed);
-  if (proven) c[3].fetch_add(proven, std::memory_order_relaxed);
+  KindCounts& c = kind_counts_[kind == MotionOrder::kEndLast];
+  c.motions.fetch_add(1, std::memory_order_relaxed);
+  if (!ok) c.colliding.fetch_add(1, std::memory_order_relaxed);
+  c.exact_states.fetch_add(exact, std::memory_order_relaxed);
+  if (proven) c.batch_free_states.fetch_add(proven, std::memory_order_relaxed);
   return ok;
 }
 
@@ -124,12 +124,12 @@ std::uint64_t DiscreteMotionValidator::invalidMotions() const {
 }
 
 MotionCounts DiscreteMotionValidator::counts(MotionOrder kind) const {
-  const std::atomic<std::uint64_t>* const c = kind_counts_[kind == MotionOrder::kEndLast];
+  const KindCounts& c = kind_counts_[kind == MotionOrder::kEndLast];
   MotionCounts out;
-  out.motions = c[0].load(std::memory_order_relaxed);
-  out.colliding = c[1].load(std::memory_order_relaxed);
-  out.exact_states = c[2].load(std::memory_order_relaxed);
-  out.batch_free_states = c[3].load(std::memory_order_relaxed);
+  out.motions = c.motions.load(std::memory_order_relaxed);
+  out.colliding = c.colliding.load(std::memory_order_relaxed);
+  out.exact_states = c.exact_states.load(std::memory_order_relaxed);
+  out.batch_free_states = c.batch_free_states.load(std::memory_order_relaxed);
   return out;
 }
 

@@ -72,8 +72,11 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
 
   std::shared_ptr<const DiscreteMotionChecker> motion_;
   std::shared_ptr<const GroupStateMap> map_;
-  /// Per kind (kEndFirst, kEndLast): MotionCounts' four fields.
-  mutable std::atomic<std::uint64_t> kind_counts_[2][4] = {};
+  /// MotionCounts' fields, atomic, per kind (kEndFirst, kEndLast).
+  struct KindCounts {
+    std::atomic<std::uint64_t> motions{0}, colliding{0}, exact_states{0}, batch_free_states{0};
+  };
+  mutable KindCounts kind_counts_[2];
 };
 
 }  // namespace dss
