@@ -71,9 +71,6 @@ __attribute__((always_inline)) inline Whole join(const Half& lo, const Half& hi)
   std::memcpy(reinterpret_cast<char*>(&w) + sizeof lo, &hi, sizeof hi);
   return w;
 }
-}  // namespace detail
-
-namespace detail {
 /// op(a, b) per lane: on the whole vectors where `wide`, else on their two halves.
 template <class Mask, class HalfMask, class Half, class Whole, class Op>
 __attribute__((always_inline)) inline Mask compare(Whole a, Whole b, bool wide, Op op) {
