@@ -439,9 +439,11 @@ __attribute__((always_inline)) inline unsigned StateBatch::run(const double* qs,
     return all;
   };
   for (const SelfPair& p : pairs_) {
-    unsigned near =
-        open & ~apart(c(p.a), slot_grown_[std::size_t(p.a)], c(p.b), slot_grown_[std::size_t(p.b)]);
-    if (p.table >= 0) near &= ~skip[p.table];
+    // The table's flags first: where they cover every open lane, no sphere test.
+    const unsigned untabled = p.table >= 0 ? open & ~skip[p.table] : open;
+    if (!untabled) continue;
+    const unsigned near = untabled & ~apart(c(p.a), slot_grown_[std::size_t(p.a)], c(p.b),
+                                            slot_grown_[std::size_t(p.b)]);
     if (!near) continue;
     // The side with a cover goes ball by ball (a, else b).
     int a = p.a, b = p.b;
