@@ -23,6 +23,7 @@
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
 #include "support/shared_data.h"
+#include "support/temp_files.h"
 
 namespace fs = std::filesystem;
 
@@ -201,6 +202,55 @@ void compareOnMbm(const std::string& robot_dir, const std::string& robot, const 
   BOOST_TEST(hull_disagree * 100 <= total);
 }
 }  // namespace
+
+// A chain of 70 links (more than one 64-bit word of slots) along x, a box each, nearly
+// straight: only the last links reach the obstacle beyond x = 3.3 m, where they bend towards it.
+// The sweep visits the slots of every word; DSS answers as fcl-hull (FCL's own broad phase).
+BOOST_AUTO_TEST_CASE(a_chain_of_70_links_against_fcl) {
+  constexpr int kLinks = 70;
+  std::string urdf = "<?xml version=\"1.0\"?>\n<robot name=\"chain\">\n";
+  auto link = [](int k) {
+    return "  <link name=\"l" + std::to_string(k) +
+           "\"><collision><origin xyz=\"0.025 0 0\"/><geometry><box size=\"0.04 0.02 "
+           "0.02\"/></geometry></collision></link>\n";
+  };
+  urdf += link(0);
+  for (int k = 1; k <= kLinks; ++k) {
+    urdf += link(k);
+    urdf += "  <joint name=\"j" + std::to_string(k) + "\" type=\"revolute\"><parent link=\"l" +
+            std::to_string(k - 1) + "\"/><child link=\"l" + std::to_string(k) +
+            "\"/><origin xyz=\"0.05 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-0.04\" "
+            "upper=\"0.04\" effort=\"1\" velocity=\"1\"/></joint>\n";
+  }
+  urdf += "</robot>\n";
+  const std::string path = dss_test::writeScratch("state_checkers", "chain70.urdf", urdf);
+  const dss::LoadedRobot robot = dss::loadRobot(path, "");
+  dss::Scene scene;
+  dss::Obstacle wall;
+  wall.name = wall.object_id = "wall";
+  wall.shape = dss::Box{Eigen::Vector3d(0.15, 0.5, 0.1)};
+  wall.X_FO.translation() = Eigen::Vector3d(3.45, 0.52, 0.0);
+  wall.X_WO = wall.X_FO;
+  scene.obstacles.push_back(wall);
+  const dss::ModelSetup setup = dss::setupModel(robot, scene, "", {});
+  BOOST_REQUIRE(setup.model->slots().size() == std::size_t(kLinks + 1));
+  const auto dss_checker = dss::makeStateChecker(setup.model, dss::CheckerConfig{});
+  dss::CheckerConfig fcl;
+  fcl.checker = "fcl-hull";
+  const auto fcl_checker = dss::makeStateChecker(setup.model, fcl);
+  std::mt19937_64 rng(70);
+  int colliding = 0;
+  constexpr int kStates = 2000;
+  for (int i = 0; i < kStates; ++i) {
+    const std::vector<double> q = dss_test::randomGroupState(*setup.model, rng);
+    const bool expected = fcl_checker->collides(q.data());
+    BOOST_TEST(dss_checker->collides(q.data()) == expected, "state " << i);
+    colliding += expected;
+  }
+  BOOST_TEST_MESSAGE("chain of 70 links: " << colliding << " of " << kStates << " colliding");
+  BOOST_TEST(colliding > kStates / 10);
+  BOOST_TEST(colliding < kStates * 9 / 10);
+}
 
 BOOST_AUTO_TEST_CASE(dss_against_fcl_on_mbm_panda_random_states, DSS_NEEDS_SHARED) {
   compareOnMbm(kPanda, "panda", kMbm);
