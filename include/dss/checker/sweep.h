@@ -124,9 +124,9 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   using ChainPoint = CollisionModel::ChainPoint;
   const ChainPoint* const chain = model.chainPoints().data();
   // Robot vs scene: the slots checked against the scene that the grid does not clear, from
-  // the last to the first. Links are numbered depth first from the root, so a link comes
-  // before its ancestors: the links far along a chain, which sweep the most space, meet the
-  // scene most often, and a colliding state ends sooner. The order changes no verdict.
+  // the last to the first. Links are numbered depth first from the root, so in this order a
+  // link comes before its ancestors: the links far along a chain, which sweep the most space,
+  // meet the scene most often, and a colliding state ends sooner. The order changes no verdict.
   for (std::size_t w = words; w-- > 0;)
     for (std::uint64_t open_slots = tested[w] & ~clear[w]; open_slots;
          open_slots &= ~(std::uint64_t(1) << (63 - __builtin_clzll(open_slots)))) {
