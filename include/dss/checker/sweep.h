@@ -128,9 +128,10 @@ bool sweep(const CollisionModel& model, const Eigen::Isometry3d* X_WL, const uns
   // link comes before its ancestors: the links far along a chain, which sweep the most space,
   // meet the scene most often, and a colliding state ends sooner. The order changes no verdict.
   for (std::size_t w = words; w-- > 0;)
-    for (std::uint64_t open_slots = tested[w] & ~clear[w]; open_slots;
-         open_slots &= ~(std::uint64_t(1) << (63 - __builtin_clzll(open_slots)))) {
-      const std::size_t k = w * 64 + static_cast<std::size_t>(63 - __builtin_clzll(open_slots));
+    for (std::uint64_t open_slots = tested[w] & ~clear[w]; open_slots;) {
+      const int top = 63 - __builtin_clzll(open_slots);
+      open_slots ^= std::uint64_t(1) << top;
+      const std::size_t k = w * 64 + static_cast<std::size_t>(top);
       const Slot& s = slots[k];
       if (s.base_bit & opt.base_free) continue;
       const Eigen::Isometry3d& X = X_WL[linkOf(s)];
