@@ -40,6 +40,22 @@ inline void checkScene(dss::Scene& scene) {
     if (o.frame_resolved && !o.X_WO.matrix().allFinite())
       propertyFailed("obstacle " + o.name + ": non-finite world pose");
   }
+  // Objects the robot holds: an id no other object has, a link, finite parts of that id.
+  std::set<std::string> ids;
+  for (const dss::Obstacle& o : scene.obstacles) ids.insert(o.object_id);
+  for (const dss::AttachedObject& a : scene.attached) {
+    if (a.id.empty() || a.link.empty()) propertyFailed("attached object without id or link");
+    if (!ids.insert(a.id).second) propertyFailed("attached object id '" + a.id + "' repeated");
+    if (a.parts.empty()) propertyFailed("attached object " + a.id + ": no part");
+    for (const dss::Obstacle& p : a.parts) {
+      if (p.object_id != a.id) propertyFailed("attached object " + a.id + ": a part of another");
+      if (!shapeFinite(p.shape)) propertyFailed("attached object " + a.id + ": non-finite shape");
+      if (!p.X_FO.matrix().allFinite())
+        propertyFailed("attached object " + a.id + ": non-finite pose");
+    }
+    for (const std::string& t : a.touch_links)
+      if (t.empty()) propertyFailed("attached object " + a.id + ": empty touch link");
+  }
   std::set<std::string> multi;  // robot_state.multi_dof_joint_state
   for (const auto& [name, X] : scene.robot_multi_dof) {
     if (!multi.insert(name).second) propertyFailed("multi-DOF joint '" + name + "' repeated");

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "dss/checker/attached_objects.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/checker/fcl_checker.h"
 #include "dss/robot/joint_state.h"
@@ -113,7 +114,15 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
     if (n != "virtual_joint")
       s.warnings.push_back("joint " + n +
                            " of the scene/request is not an active joint of the robot: ignored");
-  auto model = std::make_shared<CollisionModel>(robot.model, robot.srdf ? &*robot.srdf : nullptr,
+  // Objects the robot holds become links of its own, placed where the scene's saved robot
+  // state put them (attached_objects.h).
+  std::shared_ptr<const RobotModel> robot_model = robot.model;
+  if (!scene.attached.empty()) {
+    const std::vector<double> attach_state = heldState(*robot.model, {saved});
+    robot_model = withAttachedObjects(*robot.model, scene.attached, attach_state,
+                                      scene.fixed_frames, scene.allowed_collisions);
+  }
+  auto model = std::make_shared<CollisionModel>(robot_model, robot.srdf ? &*robot.srdf : nullptr,
                                                 std::move(scene), s.group_active, s.held, options);
   for (const auto& w : model->warnings) s.warnings.push_back(w);
   s.model = std::move(model);

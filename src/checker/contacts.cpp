@@ -48,10 +48,19 @@ namespace {
 std::string elementName(const CollisionModel& m, int e) {
   const CollisionModel::Element& el = m.elements()[std::size_t(e)];
   const RobotLink& link = m.robot().links[std::size_t(el.link)];
+  const std::string& d = el.source->description;
+  // An object the robot holds (attached_objects.h): its id, its holding link, its part.
+  const std::string attached = "attached object '" + link.name + "' on link ";
+  if (link.parent_link >= 0 && d.rfind(attached, 0) == 0) {
+    std::string s = attached + m.robot().links[std::size_t(link.parent_link)].name;
+    if (link.collisions.size() > 1)
+      for (std::size_t k = 0; k < link.collisions.size(); ++k)
+        if (&link.collisions[k] == el.source) s += " part " + std::to_string(k);
+    return s;
+  }
   std::string s = "link " + link.name;
   // The file's collision index, from the element's description ("link 'L' collision[i] ...":
   // the pieces of a decomposed mesh share theirs), else its place in the link.
-  const std::string& d = el.source->description;
   const std::size_t at = d.find("collision["), end = d.find(']', at);
   if (at != std::string::npos && end != std::string::npos)
     s += " " + d.substr(at, end + 1 - at);

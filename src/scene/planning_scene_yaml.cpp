@@ -46,6 +46,8 @@ constexpr std::initializer_list<const char*> kPlanningSceneOrWorldKeys = {
     "octomap"};
 constexpr std::initializer_list<const char*> kRobotStateKeys = {
     "joint_state", "multi_dof_joint_state", "attached_collision_objects", "is_diff"};
+constexpr std::initializer_list<const char*> kAttachedObjectKeys = {
+    "link_name", "object", "touch_links", "detach_posture", "weight"};
 constexpr std::initializer_list<const char*> kJointStateKeys = {"header", "name", "position",
                                                                 "velocity", "effort"};
 constexpr std::initializer_list<const char*> kCollisionObjectKeys = {
@@ -129,13 +131,10 @@ class SceneYamlReader {
         if (!empty) scene.warnings.push_back(y_.at(om) + ": octomap not modelled (ignored)");
       }
     }
+    // After the world's objects: an attached object's id must differ from theirs.
     if (YamlReader::has(root, "robot_state") &&
-        YamlReader::has(root["robot_state"], "attached_collision_objects")) {
-      const YAML::Node att = root["robot_state"]["attached_collision_objects"];
-      if (att.IsSequence() && att.size() > 0)
-        scene.warnings.push_back(y_.at(att) + ": " + std::to_string(att.size()) +
-                                 " attached collision object(s) not modelled (ignored)");
-    }
+        YamlReader::has(root["robot_state"], "attached_collision_objects"))
+      readAttached(root["robot_state"]["attached_collision_objects"], scene);
 
     // The file's own frames (world and fixed frames) are placed now; robot frames later.
     resolveFrames(scene, FrameMap{}, /*require_all=*/false);
@@ -168,6 +167,54 @@ class SceneYamlReader {
       scene.robot_multi_dof = y_.multiDofJointState(
           rs["multi_dof_joint_state"], "robot_state.multi_dof_joint_state",
           std::numeric_limits<std::size_t>::max(), [](std::size_t) { return std::string(); });
+  }
+
+  void readAttached(const YAML::Node& list, Scene& scene) {
+    const std::string where = "robot_state.attached_collision_objects";
+    const YAML::Node att = y_.sequence(list, where);
+    // Their shapes count against the obstacles' budget, before any is read (aliases).
+    std::size_t shapes = 0;
+    for (std::size_t i = 0; i < att.size(); ++i) {
+      if (!att[i].IsMap()) continue;
+      const YAML::Node obj = YamlReader::optional(att[i], "object");
+      if (!obj.IsDefined() || !obj.IsMap()) continue;
+      for (const char* l : {"primitives", "meshes"}) {
+        const YAML::Node n = YamlReader::optional(obj, l);
+        if (n.IsDefined() && n.IsSequence()) shapes += n.size();
+      }
+    }
+    if (shapes > limits_.max_obstacles - std::min(scene.obstacles.size(), limits_.max_obstacles))
+      y_.fail(att, scene_detail::overLimit(
+                       where + ": " + std::to_string(shapes) + " primitives and meshes after " +
+                           std::to_string(scene.obstacles.size()) + " obstacles",
+                       limits_.max_obstacles, "max_obstacles"));
+    for (std::size_t i = 0; i < att.size(); ++i) {
+      const YAML::Node a = att[i];
+      const std::string elem = "attached collision object #" + std::to_string(i);
+      if (!a.IsMap()) y_.fail(a, elem + ": expected a mapping");
+      y_.checkKeys(a, elem, "moveit_msgs/AttachedCollisionObject", kAttachedObjectKeys);
+      AttachedObject ao;
+      ao.at = y_.at(a);
+      ao.link = y_.string(y_.require(a, "link_name", elem), elem + " link_name");
+      if (ao.link.empty()) y_.fail(a, elem + ": empty link_name");
+      Scene parts;  // the object's shapes, read as a world object's
+      readObject(y_.require(a, "object", elem), i, parts);
+      ao.id = parts.obstacles.front().object_id;
+      ao.parts = std::move(parts.obstacles);
+      for (auto& w : parts.warnings) scene.warnings.push_back(std::move(w));
+      if (YamlReader::has(a, "touch_links")) {
+        const YAML::Node touch = y_.sequence(a["touch_links"], elem + " touch_links");
+        if (touch.size() > limits_.max_acm_entries)
+          y_.fail(touch, scene_detail::overLimit(
+                             elem + " touch_links: " + std::to_string(touch.size()) + " names",
+                             limits_.max_acm_entries, "max_acm_entries"));
+        for (std::size_t k = 0; k < touch.size(); ++k) {
+          ao.touch_links.push_back(y_.string(touch[k], elem + " touch_links"));
+          if (ao.touch_links.back().empty()) y_.fail(touch[k], elem + ": empty touch link");
+        }
+      }
+      scene.attached.push_back(std::move(ao));
+    }
   }
 
   void readFixedFrames(const YAML::Node& list, Scene& scene) {

@@ -12,22 +12,25 @@
 // a mesh becomes the convex hulls of its connected parts (mesh/mesh_parts.h; the hull of
 // its vertices when it has no triangles), one obstacle each. Positions are [x, y, z] or {x, y, z};
 // orientations [x, y, z, w] or {x, y, z, w}, normalised; NaN or zero quaternions refused.
-// `planes` (unbounded) and operations other than ADD are refused; attached objects and
-// octomaps are listed in Scene::warnings. A top-level document that is itself a `world`
-// mapping's content (only `collision_objects`) is also accepted.
+// `robot_state.attached_collision_objects[]`: `link_name`, `object` (read as a world
+// object; its id must differ from every other object's) and `touch_links`, into
+// Scene::attached (`detach_posture` and `weight` accepted, not read).
+// `planes` (unbounded) and operations other than ADD are refused; octomaps are listed in
+// Scene::warnings. A top-level document that is itself a `world` mapping's content (only
+// `collision_objects`) is also accepted.
 //
 // Keys: every mapping read may hold only the fields of its ROS message (PlanningScene,
 // PlanningSceneWorld, RobotState, JointState, MultiDOFJointState, TransformStamped,
-// AllowedCollisionMatrix and its entries, CollisionObject, Header, SolidPrimitive, Pose,
-// Point, Quaternion, Mesh, MeshTriangle) plus the extensions above. A key the message lacks
-// (e.g. `Pose`, `primitve_poses`) is an error naming the key, the line and the fields the
-// message has, because deserializing the ROS message from such YAML fails too (rostopic pub,
-// ros2 topic pub); SceneLoadOptions::unknown_keys_are_warnings turns it into a line in
-// Scene::warnings instead. A key given twice in one mapping is always an error (YAML requires
-// unique keys; yaml-cpp would keep one value silently). Fields we do not use (object_colors,
-// is_diff, subframes, octomap content, ...) are accepted and not read. A collision object id
-// given twice is an error naming both lines: MoveIt's ADD would replace the first object by
-// the second, silently.
+// AllowedCollisionMatrix and its entries, CollisionObject, AttachedCollisionObject, Header,
+// SolidPrimitive, Pose, Point, Quaternion, Mesh, MeshTriangle) plus the extensions above. A key
+// the message lacks (e.g. `Pose`, `primitve_poses`) is an error naming the key, the line and
+// the fields the message has, because deserializing the ROS message from such YAML fails too
+// (rostopic pub, ros2 topic pub); SceneLoadOptions::unknown_keys_are_warnings turns it into a
+// line in Scene::warnings instead. A key given twice in one mapping is always an error (YAML
+// requires unique keys; yaml-cpp would keep one value silently). Fields we do not use
+// (object_colors, is_diff, subframes, octomap content, ...) are accepted and not read. A
+// collision object id given twice (world or attached) is an error naming both lines: MoveIt's
+// ADD would replace the first object by the second, silently.
 // Budgets: obstacles, shapes per object, allowed-collision-matrix names, mesh vertices and
 // triangles are counted after alias expansion and bounded by SceneLoadOptions::limits
 // (dss/scene/input_limits.h) before they are read; an error names the limit.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dss/scene/allowed_collision_matrix.h"
+#include "dss/scene/attached_object.h"
 #include "dss/scene/obstacle.h"
 
 namespace dss {
@@ -36,8 +37,11 @@ struct Scene {
   std::vector<std::pair<std::string, Eigen::Isometry3d>> robot_multi_dof;
   /// Frames the file itself places (MoveIt `fixed_frame_transforms`), world poses.
   FrameMap fixed_frames;
-  /// Things read but not modelled (attached objects, an octomap, non-fixed URDF joints set
-  /// to a value): never dropped silently, always listed here.
+  /// Objects the robot holds (`robot_state.attached_collision_objects`): setupModel
+  /// (checker_setup.h) makes each one a link of the robot, fixed to the link that holds it.
+  std::vector<AttachedObject> attached;
+  /// Things read but not modelled (an octomap, non-fixed URDF joints set to a value): never
+  /// dropped silently, always listed here.
   std::vector<std::string> warnings;
 
   /// Distinct object ids, in file order.
