@@ -245,6 +245,14 @@ BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling) {
   checkAgainstDenseSampling(arm, 8, 1.0, 60);
 }
 
+BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling_holding_an_object) {
+  Arm arm;
+  arm.robot = dss_test::loadArm();
+  arm.model = dss_test::shelfSetupHoldingBar(arm.robot).model;
+  arm.checker = std::make_shared<const dss::DssChecker>(arm.model);
+  checkAgainstDenseSampling(arm, 17, 0.15, 120);
+}
+
 BOOST_AUTO_TEST_CASE(continuous_agrees_with_dense_sampling_on_the_panda, DSS_NEEDS_SHARED) {
   const std::string panda = dss_test::sharedPath("robots/panda");
   const std::string scene = dss_test::sharedPath("scenes/mbm_panda/bookshelf_small/scene0001.yaml");

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "dss/checker/contacts.h"
 #include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/robot/kinematics_batch.h"
@@ -315,6 +316,33 @@ BOOST_AUTO_TEST_CASE(batched_motions_agree_on_our_arm, DSS_NEEDS_BATCHES) {
   const dss::ModelSetup setup = dss_test::shelfSetup(robot);
   std::mt19937_64 rng(3);
   batchedMotionsAgree(setup.model, 150, rng);
+}
+
+BOOST_AUTO_TEST_CASE(a_held_object_in_the_lanes_of_our_arm) {
+  const dss::LoadedRobot robot = dss_test::loadArm();
+  const dss::ModelSetup setup = dss_test::shelfSetupHoldingBar(robot);
+  std::mt19937_64 rng(5);
+  std::vector<std::vector<double>> states = randomStates(*setup.model, 1500, rng);
+  const std::vector<std::vector<double>> along = motionStates(*setup.model, 300, rng);
+  states.insert(states.end(), along.begin(), along.end());
+  // The bar is in some of the collisions (against the shelf and against the arm).
+  const dss::DssChecker exact(setup.model);
+  int by_bar = 0;
+  for (const auto& q : states)
+    if (const auto contacts = dss::contactsAt(exact, q.data()))
+      for (const dss::Contact& c : *contacts)
+        by_bar += dss::describeContact(*setup.model, c).find("'bar'") != std::string::npos;
+  BOOST_TEST(by_bar > 0);
+  const Proven p = provenAgainstExact(setup.model, states);
+  BOOST_TEST_MESSAGE("arm holding a bar: " << p.proven << " of " << p.free
+                                           << " free states proven, " << by_bar
+                                           << " contacts of the bar");
+  if (dss::activeSimdPath() == dss::SimdPath::kAvx2) {
+    BOOST_TEST(p.proven > p.free / 4);
+    batchedMotionsAgree(setup.model, 100, rng);
+  } else {
+    BOOST_TEST_MESSAGE("arm holding a bar: not on the AVX2 path, batched motions not compared");
+  }
 }
 
 BOOST_AUTO_TEST_CASE(shared_robots_float_kinematics_and_proven_states, DSS_NEEDS_SHARED) {

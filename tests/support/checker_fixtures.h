@@ -44,6 +44,26 @@ inline dss::ModelSetup shelfSetup(const dss::LoadedRobot& robot) {
                          req.startState());
 }
 
+/// The same, the arm holding a bar between its fingers (an attached object on its tool link,
+/// 0.4 m along the tool's z from 0.02 to 0.42), which reaches the shelf and the arm's own links.
+inline dss::ModelSetup shelfSetupHoldingBar(const dss::LoadedRobot& robot) {
+  const auto req = dss::loadPlanRequestYaml(kArmDir + "/scenes/shelf_request.yaml");
+  dss::Scene scene = dss::loadScene(kArmDir + "/scenes/shelf.yaml");
+  dss::AttachedObject bar;
+  bar.id = "bar";
+  bar.link = "tool";
+  bar.at = "checker_fixtures.h";
+  dss::Obstacle part;
+  part.name = part.object_id = "bar";
+  part.frame_id = "tool";
+  part.shape = dss::Box::fromSize(Eigen::Vector3d(0.03, 0.04, 0.4));
+  part.X_FO.translation() = Eigen::Vector3d(0.0, 0.0, 0.22);
+  part.description = "box 0.03 x 0.04 x 0.4";
+  bar.parts.push_back(part);
+  scene.attached.push_back(bar);
+  return dss::setupModel(robot, std::move(scene), req.group_name, req.startState());
+}
+
 /// The lower and upper value a group joint is drawn from: its limits, [-pi, pi] for a
 /// continuous (or unlimited) joint.
 inline std::pair<double, double> sampleRange(const dss::RobotModel& robot, int active) {
