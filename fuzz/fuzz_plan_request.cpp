@@ -4,7 +4,7 @@
 // the source (key errors are tried strict and as warnings, by the last input byte); a request
 // that loads must have one position per start joint and only finite values; its multi-DOF start
 // transforms are finite rigid transforms with distinct names, its workspace corners finite and
-// ordered.
+// ordered, its start state's attached objects as a scene's (scene_checks.h).
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -13,11 +13,15 @@
 
 #include "dss/scene/plan_request.h"
 #include "fuzz_support.h"
+#include "scene_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   dss::PlanRequestOptions options;
   options.unknown_keys_are_warnings = size > 0 && (data[size - 1] & 1);
+  options.limits.max_mesh_vertices = 200'000;  // attached objects' meshes, as in the scene targets
+  options.limits.max_scene_mesh_vertices = 400'000;
+  options.limits.max_mesh_triangles = 400'000;
   dss::PlanRequest request;
   try {
     request = dss::parsePlanRequestYaml(text, "fuzz_request.yaml", options);
@@ -45,6 +49,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!lo.allFinite() || !hi.allFinite() || !(lo.array() <= hi.array()).all())
       dss_fuzz::propertyFailed("workspace corners not finite and ordered");
   }
+  std::set<std::string> ids;
+  dss_fuzz::checkAttached(request.start_attached, ids);
+  for (const dss::AttachedObject& a : request.start_attached)
+    if (!a.at_request_start) dss_fuzz::propertyFailed("a start state object not marked so");
   (void)request.startState();
   static const std::set<std::string> movable = {"joint1", "joint2", "joint3", "shoulder_pan"};
   static const std::set<std::string> held = {"finger_joint", "gripper"};

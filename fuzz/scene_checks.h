@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "dss/core/any_shape_query.h"
 #include "dss/scene/scene.h"
@@ -31,19 +32,12 @@ inline bool shapeFinite(const dss::AnyShape& shape) {
   return true;
 }
 
-inline void checkScene(dss::Scene& scene) {
-  std::set<std::string> names;
-  for (const dss::Obstacle& o : scene.obstacles) {
-    if (!names.insert(o.name).second) propertyFailed("obstacle name '" + o.name + "' repeated");
-    if (!shapeFinite(o.shape)) propertyFailed("obstacle " + o.name + ": non-finite shape");
-    if (!o.X_FO.matrix().allFinite()) propertyFailed("obstacle " + o.name + ": non-finite pose");
-    if (o.frame_resolved && !o.X_WO.matrix().allFinite())
-      propertyFailed("obstacle " + o.name + ": non-finite world pose");
-  }
-  // Objects the robot holds: an id no other object has, a link, finite parts of that id.
-  std::set<std::string> ids;
-  for (const dss::Obstacle& o : scene.obstacles) ids.insert(o.object_id);
-  for (const dss::AttachedObject& a : scene.attached) {
+/// Attached objects (a scene's or a request start state's): each with an id that `ids` (the
+/// other objects' ids, extended here) lacks, a link, touch links with names, and finite parts
+/// of that id.
+inline void checkAttached(const std::vector<dss::AttachedObject>& attached,
+                          std::set<std::string>& ids) {
+  for (const dss::AttachedObject& a : attached) {
     if (a.id.empty() || a.link.empty()) propertyFailed("attached object without id or link");
     if (!ids.insert(a.id).second) propertyFailed("attached object id '" + a.id + "' repeated");
     if (a.parts.empty()) propertyFailed("attached object " + a.id + ": no part");
@@ -56,6 +50,21 @@ inline void checkScene(dss::Scene& scene) {
     for (const std::string& t : a.touch_links)
       if (t.empty()) propertyFailed("attached object " + a.id + ": empty touch link");
   }
+}
+
+inline void checkScene(dss::Scene& scene) {
+  std::set<std::string> names;
+  for (const dss::Obstacle& o : scene.obstacles) {
+    if (!names.insert(o.name).second) propertyFailed("obstacle name '" + o.name + "' repeated");
+    if (!shapeFinite(o.shape)) propertyFailed("obstacle " + o.name + ": non-finite shape");
+    if (!o.X_FO.matrix().allFinite()) propertyFailed("obstacle " + o.name + ": non-finite pose");
+    if (o.frame_resolved && !o.X_WO.matrix().allFinite())
+      propertyFailed("obstacle " + o.name + ": non-finite world pose");
+  }
+  // Objects the robot holds: an id no other object has, a link, finite parts of that id.
+  std::set<std::string> ids;
+  for (const dss::Obstacle& o : scene.obstacles) ids.insert(o.object_id);
+  checkAttached(scene.attached, ids);
   std::set<std::string> multi;  // robot_state.multi_dof_joint_state
   for (const auto& [name, X] : scene.robot_multi_dof) {
     if (!multi.insert(name).second) propertyFailed("multi-DOF joint '" + name + "' repeated");

@@ -80,6 +80,8 @@ LoadedProblem loadProblem(const Args& a, const dss::LoadedRobot& loaded_robot,
   scene_options.max_mesh_parts = a.scene_mesh_parts;
   dss::Scene scene =
       files.scene.empty() ? dss::Scene{} : dss::loadScene(files.scene, scene_options);
+  // The objects the start state holds are held throughout the plan, as MoveIt plans.
+  scene.attached.insert(scene.attached.end(), req.start_attached.begin(), req.start_attached.end());
   dss::Scene loaded = a.render.empty() ? dss::Scene{} : scene;
   std::map<std::string, double> start = req.startState();
   {

@@ -115,12 +115,23 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
       s.warnings.push_back("joint " + n +
                            " of the scene/request is not an active joint of the robot: ignored");
   // Objects the robot holds become links of its own, placed where the scene's saved robot
-  // state put them (attached_objects.h).
+  // state put them (attached_objects.h); those of a request's start state where it put them
+  // (its values override the saved ones).
   std::shared_ptr<const RobotModel> robot_model = robot.model;
-  if (!scene.attached.empty()) {
-    const std::vector<double> attach_state = heldState(*robot.model, {saved});
-    robot_model = withAttachedObjects(*robot.model, scene.attached, attach_state,
-                                      scene.fixed_frames, scene.allowed_collisions);
+  for (const bool at_start : {false, true}) {
+    std::vector<AttachedObject> objects;
+    for (const AttachedObject& a : scene.attached) {
+      for (const Obstacle& o : scene.obstacles)
+        if (o.object_id == a.id)
+          throw std::runtime_error(a.at + ": attached object '" + a.id + "': " + scene.source +
+                                   " has an object '" + a.id + "' too");
+      if (a.at_request_start == at_start) objects.push_back(a);
+    }
+    if (objects.empty()) continue;
+    const std::vector<double> attach_state =
+        at_start ? heldState(*robot.model, {saved, start}) : heldState(*robot.model, {saved});
+    robot_model = withAttachedObjects(robot_model, objects, attach_state, scene.fixed_frames,
+                                      scene.allowed_collisions);
   }
   auto model = std::make_shared<CollisionModel>(robot_model, robot.srdf ? &*robot.srdf : nullptr,
                                                 std::move(scene), s.group_active, s.held, options);

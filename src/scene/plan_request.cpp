@@ -4,6 +4,7 @@
 #include <initializer_list>
 #include <set>
 
+#include "attached_objects_yaml.h"
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
 #include "yaml_util.h"
@@ -92,6 +93,26 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
     r.workspace.emplace(lo, hi);
   }
 
+  // Constraints along the path are not something a collision checker enforces: said, not
+  // dropped silently.
+  auto nonEmptyList = [](const YAML::Node& n, const char* key) {
+    if (!n.IsMap()) return false;
+    const YAML::Node l = YamlReader::optional(n, key);
+    return l.IsDefined() && l.IsSequence() && l.size() > 0;
+  };
+  if (YamlReader::has(root, "path_constraints")) {
+    const YAML::Node pc = root["path_constraints"];
+    bool any = false;
+    for (const char* k : {"joint_constraints", "position_constraints", "orientation_constraints",
+                          "visibility_constraints"})
+      any = any || nonEmptyList(pc, k);
+    if (any) r.warnings.push_back(y.at(pc) + ": path_constraints not enforced (ignored)");
+  }
+  if (YamlReader::has(root, "trajectory_constraints") &&
+      nonEmptyList(root["trajectory_constraints"], "constraints"))
+    r.warnings.push_back(y.at(root["trajectory_constraints"]) +
+                         ": trajectory_constraints not enforced (ignored)");
+
   const YAML::Node start = y.require(root, "start_state", "request");
   y.checkKeys(start, "start_state", "moveit_msgs/RobotState", kRobotStateKeys);
   if (YamlReader::has(start, "joint_state")) {
@@ -123,9 +144,13 @@ PlanRequest parsePlanRequestYaml(const std::string& text, const std::string& sou
                                    max_values, "max_request_joint_values", "PlanRequestOptions");
                              });
   if (YamlReader::has(start, "attached_collision_objects")) {
-    const YAML::Node att = start["attached_collision_objects"];
-    if (att.IsSequence() && att.size() > 0)
-      r.warnings.push_back(y.at(att) + ": attached collision objects in the start state ignored");
+    SceneLoadOptions scene_options;
+    scene_options.limits = options.limits;
+    scene_options.unknown_keys_are_warnings = options.unknown_keys_are_warnings;
+    r.start_attached = scene_detail::readAttachedObjectsYaml(
+        start["attached_collision_objects"], source, "start_state.attached_collision_objects",
+        scene_options, r.warnings);
+    for (AttachedObject& a : r.start_attached) a.at_request_start = true;
   }
 
   const YAML::Node goals =

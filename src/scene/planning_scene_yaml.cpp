@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "attached_objects_yaml.h"
 #include "dss/scene/scene_error.h"
 #include "scene_util.h"
 #include "yaml_util.h"
@@ -73,6 +74,16 @@ class SceneYamlReader {
         base_dir_(scene_detail::parentDir(source)),
         mesh_budget_(limits_) {}
 
+  // A robot state's attached objects alone (readAttachedObjectsYaml).
+  Scene readAttachedOnly(const YAML::Node& list, const std::string& where) {
+    Scene scene;
+    scene.source = y_.file();
+    y_.setUnknownKeyPolicy(options_.unknown_keys_are_warnings, &scene.warnings,
+                           "SceneLoadOptions::unknown_keys_are_warnings");
+    readAttached(list, where, scene);
+    return scene;
+  }
+
   Scene read(const std::string& text) {
     Scene scene;
     scene.source = y_.file();
@@ -134,7 +145,8 @@ class SceneYamlReader {
     // After the world's objects: an attached object's id must differ from theirs.
     if (YamlReader::has(root, "robot_state") &&
         YamlReader::has(root["robot_state"], "attached_collision_objects"))
-      readAttached(root["robot_state"]["attached_collision_objects"], scene);
+      readAttached(root["robot_state"]["attached_collision_objects"],
+                   "robot_state.attached_collision_objects", scene);
 
     // The file's own frames (world and fixed frames) are placed now; robot frames later.
     resolveFrames(scene, FrameMap{}, /*require_all=*/false);
@@ -169,8 +181,7 @@ class SceneYamlReader {
           std::numeric_limits<std::size_t>::max(), [](std::size_t) { return std::string(); });
   }
 
-  void readAttached(const YAML::Node& list, Scene& scene) {
-    const std::string where = "robot_state.attached_collision_objects";
+  void readAttached(const YAML::Node& list, const std::string& where, Scene& scene) {
     const YAML::Node att = y_.sequence(list, where);
     // Their shapes count against the obstacles' budget, before any is read (aliases).
     std::size_t shapes = 0;
@@ -516,6 +527,14 @@ class SceneYamlReader {
 };
 
 }  // namespace
+
+std::vector<AttachedObject> scene_detail::readAttachedObjectsYaml(
+    const YAML::Node& list, const std::string& source, const std::string& where,
+    const SceneLoadOptions& options, std::vector<std::string>& warnings) {
+  Scene s = SceneYamlReader(source, options).readAttachedOnly(list, where);
+  warnings.insert(warnings.end(), s.warnings.begin(), s.warnings.end());
+  return std::move(s.attached);
+}
 
 Scene parsePlanningSceneYaml(const std::string& text, const std::string& source,
                              const SceneLoadOptions& options) {

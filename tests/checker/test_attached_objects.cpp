@@ -172,6 +172,65 @@ BOOST_AUTO_TEST_CASE(parts_given_in_other_frames_are_placed_at_the_saved_state) 
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_request_start_object_is_placed_at_the_start_state) {
+  // The scene saved j1 = 0; the request starts at j1 = 0.7 and holds the rod given in the world
+  // there: it lands in l1 as the rod given in l1's frame.
+  const double a = 0.7, c = std::cos(a), s = std::sin(a);
+  dss::Scene scene = dss::parsePlanningSceneYaml(kWorld, "held.yaml");
+  dss::AttachedObject rod;
+  rod.id = "rod";
+  rod.link = "l1";
+  rod.at = "request.yaml:4";
+  rod.at_request_start = true;
+  dss::Obstacle part;
+  part.name = part.object_id = "rod";
+  part.frame_id = "world";
+  part.shape = dss::Box::fromSize(Eigen::Vector3d(0.4, 0.04, 0.04));
+  part.X_FO.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  part.X_FO.translation() = Eigen::Vector3d(0.45 * c - 0.1 * s, 0.45 * s + 0.1 * c, 0.3);
+  rod.parts.push_back(part);
+  scene.attached.push_back(rod);
+  const dss::ModelSetup m = dss::setupModel(holder(), scene, "arm", {{"j1", a}});
+  const dss::ModelSetup ref = setup(sceneWith("l1", kRodInL1, "l2"));
+  const auto& robot = m.model->robot();
+  const auto& em = robot.links.at(std::size_t(robot.linkIndex("rod"))).collisions.at(0);
+  const auto& er = ref.model->robot()
+                       .links.at(std::size_t(ref.model->robot().linkIndex("rod")))
+                       .collisions.at(0);
+  BOOST_TEST((er.X_LS.matrix() - em.X_LS.matrix()).cwiseAbs().maxCoeff() < 1e-12);
+  // Held by the scene instead, the same part is placed at the saved j1 = 0: elsewhere.
+  scene.attached[0].at_request_start = false;
+  const dss::ModelSetup saved = dss::setupModel(holder(), scene, "arm", {{"j1", a}});
+  const auto& es = saved.model->robot()
+                       .links.at(std::size_t(saved.model->robot().linkIndex("rod")))
+                       .collisions.at(0);
+  BOOST_TEST((er.X_LS.matrix() - es.X_LS.matrix()).cwiseAbs().maxCoeff() > 0.1);
+  // An id the scene's world uses too is refused.
+  scene.attached[0].id = "post";
+  const std::string msg =
+      dss_test::thrownMessage([&] { dss::setupModel(holder(), scene, "arm", {}); });
+  BOOST_TEST(msg.find("request.yaml:4: attached object 'post'") == 0u, msg);
+  BOOST_TEST(msg.find("has an object 'post' too") != std::string::npos, msg);
+}
+
+BOOST_AUTO_TEST_CASE(models_holding_the_same_object_share_one_robot) {
+  const dss::LoadedRobot robot = holder();
+  auto model = [&](const std::string& yaml, const std::string& file) {
+    return dss::setupModel(robot, dss::parsePlanningSceneYaml(yaml, file), "arm", {}).model;
+  };
+  const auto a = model(sceneWith("l1", kRodInL1, "l2"), "a.yaml");
+  const auto b = model(sceneWith("l1", kRodInL1, ""), "b.yaml");  // touch links: the matrix's
+  const auto c = model(
+      sceneWith("l1", "{position: [0.45, 0.1, 0.001], orientation: [0, 0, 0, 1]}", "l2"), "c.yaml");
+  BOOST_TEST(&a->robot() == &b->robot());
+  BOOST_TEST(&a->robot() != &c->robot());
+  BOOST_TEST(&a->robot() != robot.model.get());
+  // Sharing the robot does not share the touch links: b's folded l2 collides, a's does not.
+  const double q[2] = {kPi, kPi / 2};
+  BOOST_TEST(!dss::DssChecker(a).collides(q));
+  BOOST_TEST(dss::DssChecker(b).collides(q));
+}
+
 BOOST_AUTO_TEST_CASE(random_states_agree_with_fcl_and_reach_the_rod) {
   const dss::ModelSetup m = setup(sceneWith("l1", kRodInL1, "l2"));
   dss::DssChecker c(m.model, {});

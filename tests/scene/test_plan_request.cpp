@@ -103,4 +103,52 @@ BOOST_AUTO_TEST_CASE(errors) {
   BOOST_TEST(contains(m, "malformed YAML"));
 }
 
+BOOST_AUTO_TEST_CASE(start_state_attached_objects_are_read) {
+  const std::string text =
+      "group_name: g\nstart_state:\n  joint_state: {name: [a], position: [0]}\n"
+      "  attached_collision_objects:\n"
+      "    - link_name: hand\n      touch_links: [finger]\n      weight: 0.2\n"
+      "      object:\n        id: cup\n        header: {frame_id: world}\n"
+      "        primitives: [{type: cylinder, dimensions: [0.1, 0.03]}]\n"
+      "        primitive_poses: [{position: [0.5, 0, 0.2], orientation: [0, 0, 0, 1]}]\n"
+      "goal_constraints:\n  - joint_constraints: [{joint_name: a, position: 1}]\n";
+  const dss::PlanRequest r = dss::parsePlanRequestYaml(text, "req.yaml");
+  BOOST_TEST(r.warnings.empty());
+  BOOST_REQUIRE(r.start_attached.size() == 1u);
+  const dss::AttachedObject& a = r.start_attached[0];
+  BOOST_TEST(a.id == "cup");
+  BOOST_TEST(a.link == "hand");
+  BOOST_TEST(a.touch_links == std::vector<std::string>{"finger"});
+  BOOST_TEST(a.at_request_start);
+  BOOST_TEST(a.at == "req.yaml:5");
+  BOOST_REQUIRE(a.parts.size() == 1u);
+  BOOST_TEST(a.parts[0].frame_id == "world");
+  BOOST_TEST(a.parts[0].X_FO.translation().x() == 0.5);
+  // A bad object is refused as in a scene: the file, the line and the field.
+  std::string bad = text;
+  bad.replace(bad.find("type: cylinder"), 14, "type: torus");
+  const std::string m =
+      thrownMessage<dss::SceneError>([&] { dss::parsePlanRequestYaml(bad, "req.yaml"); });
+  BOOST_TEST(contains(m, "req.yaml:11: object 'cup' primitive 0"), m);
+  BOOST_TEST(contains(m, "unknown primitive type 'torus'"), m);
+}
+
+BOOST_AUTO_TEST_CASE(path_and_trajectory_constraints_are_said_to_be_ignored) {
+  const std::string base =
+      "group_name: g\nstart_state:\n  joint_state: {name: [a], position: [0]}\n"
+      "goal_constraints:\n  - joint_constraints: [{joint_name: a, position: 1}]\n";
+  BOOST_TEST(dss::parsePlanRequestYaml(base + "path_constraints: {name: '', joint_constraints: "
+                                              "[]}\ntrajectory_constraints: {constraints: []}\n",
+                                       "req.yaml")
+                 .warnings.empty());
+  const dss::PlanRequest r = dss::parsePlanRequestYaml(
+      base +
+          "path_constraints:\n  orientation_constraints: [{link_name: hand}]\n"
+          "trajectory_constraints:\n  constraints: [{name: c}]\n",
+      "req.yaml");
+  BOOST_REQUIRE(r.warnings.size() == 2u);
+  BOOST_TEST(r.warnings[0] == "req.yaml:7: path_constraints not enforced (ignored)");
+  BOOST_TEST(r.warnings[1] == "req.yaml:9: trajectory_constraints not enforced (ignored)");
+}
+
 BOOST_AUTO_TEST_SUITE_END()

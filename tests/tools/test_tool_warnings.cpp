@@ -1,6 +1,6 @@
 // dss_check and dss_plan show every warning the readers stored: the robot's (a <mimic> tag on
 // a fixed joint), the SRDF's (a group_state joint without a value), the scene's (link_padding
-// that is not modelled) and the request's (attached objects in the start state). They were
+// that is not modelled) and the request's (path constraints, which are not enforced). They were
 // stored and then dropped before reaching the user.
 #include <sys/wait.h>
 #include <unistd.h>
@@ -92,15 +92,16 @@ world:
 const char* const kRequest = R"(group_name: arm
 start_state:
   joint_state: {name: [j1], position: [0]}
-  attached_collision_objects: [{link_name: l1}]
 goal_constraints:
   - joint_constraints: [{joint_name: j1, position: 0.5}]
+path_constraints:
+  joint_constraints: [{joint_name: j1, position: 0, tolerance_above: 1, tolerance_below: 1}]
 )";
 
 const std::string kRobotWarning = "joint 'jf' is fixed; its <mimic> tag is ignored";
 const std::string kSrdfWarning = "group_state 'home' joint 'j1' has no value";
 const std::string kSceneWarning = "link_padding/link_scale ignored";
-const std::string kRequestWarning = "attached collision objects in the start state ignored";
+const std::string kRequestWarning = "path_constraints not enforced (ignored)";
 
 }  // namespace
 
@@ -126,7 +127,7 @@ BOOST_AUTO_TEST_CASE(dss_plan_prints_robot_srdf_scene_and_request_warnings) {
   BOOST_TEST(hasLine(r, "dss_plan: warning: " + urdf + ":", kRobotWarning), r.err);
   BOOST_TEST(hasLine(r, "dss_plan: warning: " + srdf + ":3: ", kSrdfWarning), r.err);
   BOOST_TEST(hasLine(r, "dss_plan: request: warning: " + scene + ": ", kSceneWarning), r.err);
-  BOOST_TEST(hasLine(r, "dss_plan: request: warning: " + request + ":4: ", kRequestWarning), r.err);
+  BOOST_TEST(hasLine(r, "dss_plan: request: warning: " + request + ":7: ", kRequestWarning), r.err);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -23,6 +23,9 @@ struct AttachedObject {
   std::vector<Obstacle> parts;
   /// Where it was read ("file:line"), for messages.
   std::string at;
+  /// Read from a MotionPlanRequest's start state: parts given in another frame than `link`
+  /// are placed at the request's start state (else at the scene's saved robot state).
+  bool at_request_start = false;
 };
 
 }  // namespace dss

@@ -25,12 +25,13 @@
 #include <string>
 #include <vector>
 
+#include "dss/scene/attached_object.h"
 #include "dss/scene/input_limits.h"
 
 namespace dss {
 
 struct PlanRequestOptions {
-  /// Only max_request_joint_values applies to requests.
+  /// max_request_joint_values, and for the start state's attached objects those of a scene.
   SceneInputLimits limits;
   /// An unknown key becomes a line in PlanRequest::warnings instead of an error.
   bool unknown_keys_are_warnings = false;
@@ -58,6 +59,10 @@ struct PlanRequest {
   std::vector<double> start_positions;
   /// start_state.multi_dof_joint_state: one transform per joint name, in file order.
   std::vector<std::pair<std::string, Eigen::Isometry3d>> start_multi_dof;
+  /// start_state.attached_collision_objects, read as a PlanningScene's (at_request_start set).
+  /// MoveIt plans with them held: append them to the scene's Scene::attached before
+  /// setupModel / makeProblem (dss_plan does).
+  std::vector<AttachedObject> start_attached;
   /// workspace_parameters' min_corner and max_corner, when given.
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> workspace;
   /// Any one of these goals satisfies the request (MoveIt semantics).
