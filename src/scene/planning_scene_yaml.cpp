@@ -183,10 +183,13 @@ class SceneYamlReader {
 
   void readAttached(const YAML::Node& list, const std::string& where, Scene& scene) {
     const YAML::Node att = y_.sequence(list, where);
-    // Their shapes count against the obstacles' budget, before any is read (aliases).
-    std::size_t shapes = 0;
+    // Their shapes count against the obstacles' budget and their touch links against the
+    // collision matrix's names, all before any is read (aliases repeat lists cheaply).
+    std::size_t shapes = 0, touch = 0;
     for (std::size_t i = 0; i < att.size(); ++i) {
       if (!att[i].IsMap()) continue;
+      const YAML::Node t = YamlReader::optional(att[i], "touch_links");
+      if (t.IsDefined() && t.IsSequence()) touch += t.size();
       const YAML::Node obj = YamlReader::optional(att[i], "object");
       if (!obj.IsDefined() || !obj.IsMap()) continue;
       for (const char* l : {"primitives", "meshes"}) {
@@ -199,6 +202,9 @@ class SceneYamlReader {
                        where + ": " + std::to_string(shapes) + " primitives and meshes after " +
                            std::to_string(scene.obstacles.size()) + " obstacles",
                        limits_.max_obstacles, "max_obstacles"));
+    if (touch > limits_.max_acm_entries)
+      y_.fail(att, scene_detail::overLimit(where + ": " + std::to_string(touch) + " touch links",
+                                           limits_.max_acm_entries, "max_acm_entries"));
     for (std::size_t i = 0; i < att.size(); ++i) {
       const YAML::Node a = att[i];
       const std::string elem = "attached collision object #" + std::to_string(i);
@@ -214,14 +220,10 @@ class SceneYamlReader {
       ao.parts = std::move(parts.obstacles);
       for (auto& w : parts.warnings) scene.warnings.push_back(std::move(w));
       if (YamlReader::has(a, "touch_links")) {
-        const YAML::Node touch = y_.sequence(a["touch_links"], elem + " touch_links");
-        if (touch.size() > limits_.max_acm_entries)
-          y_.fail(touch, scene_detail::overLimit(
-                             elem + " touch_links: " + std::to_string(touch.size()) + " names",
-                             limits_.max_acm_entries, "max_acm_entries"));
-        for (std::size_t k = 0; k < touch.size(); ++k) {
-          ao.touch_links.push_back(y_.string(touch[k], elem + " touch_links"));
-          if (ao.touch_links.back().empty()) y_.fail(touch[k], elem + ": empty touch link");
+        const YAML::Node links = y_.sequence(a["touch_links"], elem + " touch_links");
+        for (std::size_t k = 0; k < links.size(); ++k) {
+          ao.touch_links.push_back(y_.string(links[k], elem + " touch_links"));
+          if (ao.touch_links.back().empty()) y_.fail(links[k], elem + ": empty touch link");
         }
       }
       scene.attached.push_back(std::move(ao));

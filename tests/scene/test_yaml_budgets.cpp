@@ -113,6 +113,40 @@ BOOST_AUTO_TEST_CASE(an_aliased_collision_matrix_is_refused) {
                       "the limit of 2 (SceneInputLimits::max_acm_entries"));
 }
 
+// Attached objects: 1000 objects sharing one list of 1000 touch links (a million names), and
+// 1000 sharing 1000 primitives, each refused before any object is read.
+BOOST_AUTO_TEST_CASE(aliased_attached_objects_are_bounded) {
+  auto attached = [](const std::string& touch, const std::string& prims, const std::string& poses) {
+    std::string s =
+        "robot_state:\n  attached_collision_objects:\n    - link_name: hand\n"
+        "      touch_links: &T " +
+        touch + "\n      object: {id: o, primitives: &B " + prims + ", primitive_poses: &P " +
+        poses + "}\n";
+    for (int i = 1; i < 1000; ++i)
+      s += "    - {link_name: hand, touch_links: *T, object: {id: o" + std::to_string(i) +
+           ", primitives: *B, primitive_poses: *P}}\n";
+    return s;
+  };
+  const std::string box = "{type: box, dimensions: [0.1, 0.1, 0.1]}";
+  const std::string pose = "{position: [0, 0, 0], orientation: [0, 0, 0, 1]}";
+  std::string m =
+      sceneError(attached(aliasedList("t", "finger", 1000), "[" + box + "]", "[" + pose + "]"));
+  BOOST_TEST(m == "amplified.yaml:3: robot_state.attached_collision_objects: 1000000 touch "
+                  "links exceeds the limit of 1000 (SceneInputLimits::max_acm_entries; raise it "
+                  "with SceneLoadOptions::limits.max_acm_entries)",
+             m);
+  m = sceneError(attached("[finger]", aliasedList("b", box, 1000), aliasedList("p", pose, 1000)));
+  BOOST_TEST(m == "amplified.yaml:3: robot_state.attached_collision_objects: 1000000 primitives "
+                  "and meshes after 0 obstacles exceeds the limit of 100000 "
+                  "(SceneInputLimits::max_obstacles; raise it with "
+                  "SceneLoadOptions::limits.max_obstacles)",
+             m);
+  // Within the limits the same shape of file reads: 1000 objects of one box and one touch link.
+  const dss::Scene ok = dss::parsePlanningSceneYaml(
+      attached("[finger]", "[" + box + "]", "[" + pose + "]"), "ok.yaml");
+  BOOST_TEST(ok.attached.size() == 1000u);
+}
+
 BOOST_AUTO_TEST_CASE(aliased_mesh_vertices_are_bounded) {
   // One inline mesh of 1000 vertices (one aliased point and a tetrahedron), used by 3 objects.
   std::string verts = "[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], &v [0.1, 0.1, 0.1]";
