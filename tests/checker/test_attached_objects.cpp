@@ -11,6 +11,7 @@
 #include "dss/robot/srdf.h"
 #include "dss/robot/urdf_loader.h"
 #include "dss/scene/planning_scene_yaml.h"
+#include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
 #include "support/thrown_message.h"
 
@@ -252,6 +253,51 @@ BOOST_AUTO_TEST_CASE(random_states_agree_with_fcl_and_reach_the_rod) {
   }
   BOOST_TEST(colliding > 0);
   BOOST_TEST(by_rod > 0);
+}
+
+BOOST_AUTO_TEST_CASE(a_crate_on_our_mobile_base_agrees_with_fcl) {
+  // The base link's crate gets its own cells in the base-scene table; a tray on the gripper
+  // rides the whole body.
+  dss_test::MobileSetup mob = dss_test::mobileSetup("dss_mobile_base", "aisle");
+  dss::Scene scene = dss::loadScene(mob.scene_file);
+  auto box = [](const std::string& id, const std::string& link, const Eigen::Vector3d& size,
+                const Eigen::Vector3d& at) {
+    dss::AttachedObject a;
+    a.id = id;
+    a.link = link;
+    a.at = "test";
+    dss::Obstacle part;
+    part.name = part.object_id = id;
+    part.frame_id = link;
+    part.shape = dss::Box::fromSize(size);
+    part.X_FO.translation() = at;
+    a.parts.push_back(part);
+    return a;
+  };
+  scene.attached.push_back(box("crate", "base_link", {0.3, 0.3, 0.2}, {0.0, 0.45, 0.3}));
+  scene.attached.push_back(box("tray", "gripper_link", {0.3, 0.3, 0.02}, {0.15, 0.0, 0.0}));
+  const dss::ModelSetup m = dss::setupModel(mob.robot, scene, mob.setup.group, {});
+  dss::DssChecker c(m.model, {});
+  dss::CheckerConfig fcl;
+  fcl.checker = "fcl-hull";
+  const auto f = dss::makeStateChecker(m.model, fcl);
+  std::mt19937_64 rng(23);
+  int crate = 0, tray = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const std::vector<double> q = dss_test::randomGroupState(*m.model, rng);
+    const bool hit = c.collides(q.data());
+    BOOST_TEST(hit == f->collides(q.data()), "state " << k);
+    if (!hit) continue;
+    const auto contacts = dss::contactsAt(c, q.data());
+    BOOST_REQUIRE(contacts.has_value());
+    for (const dss::Contact& x : *contacts) {
+      const std::string d = dss::describeContact(c.model(), x);
+      crate += d.find("'crate'") != std::string::npos;
+      tray += d.find("'tray'") != std::string::npos;
+    }
+  }
+  BOOST_TEST(crate > 0);
+  BOOST_TEST(tray > 0);
 }
 
 BOOST_AUTO_TEST_CASE(bad_attachments_name_the_file_the_line_and_the_object) {
