@@ -13,8 +13,8 @@ namespace dss {
 
 namespace {
 
-// The bytes of the added links (names, holding links, shapes and placements): robots with the
-// same added links are the same robot.
+// The bytes of the added links (names, holding links, shapes and placements, in order; the
+// descriptions follow from them): robots with the same added links are the same robot.
 void appendBytes(std::string& key, const void* p, std::size_t n) {
   key.append(static_cast<const char*>(p), n);
 }
@@ -124,7 +124,6 @@ std::shared_ptr<const RobotModel> withAttachedObjects(
         e.description += " (part " + std::to_string(link.collisions.size()) + ")";
       appendShape(key, e.shape);
       appendBytes(key, e.X_LS.matrix().data(), 16 * sizeof(double));
-      appendName(key, e.description);
       link.collisions.push_back(std::move(e));
     }
     added.push_back(std::move(link));

@@ -117,16 +117,16 @@ ModelSetup setupModel(const LoadedRobot& robot, Scene scene, std::string group,
   // Objects the robot holds become links of its own, placed where the scene's saved robot
   // state put them (attached_objects.h); those of a request's start state where it put them
   // (its values override the saved ones).
+  for (const AttachedObject& a : scene.attached)
+    for (const Obstacle& o : scene.obstacles)
+      if (o.object_id == a.id)
+        throw std::runtime_error(a.at + ": attached object '" + a.id + "': " + scene.source +
+                                 " has an object '" + a.id + "' too");
   std::shared_ptr<const RobotModel> robot_model = robot.model;
   for (const bool at_start : {false, true}) {
     std::vector<AttachedObject> objects;
-    for (const AttachedObject& a : scene.attached) {
-      for (const Obstacle& o : scene.obstacles)
-        if (o.object_id == a.id)
-          throw std::runtime_error(a.at + ": attached object '" + a.id + "': " + scene.source +
-                                   " has an object '" + a.id + "' too");
+    for (const AttachedObject& a : scene.attached)
       if (a.at_request_start == at_start) objects.push_back(a);
-    }
     if (objects.empty()) continue;
     const std::vector<double> attach_state =
         at_start ? heldState(*robot.model, {saved, start}) : heldState(*robot.model, {saved});

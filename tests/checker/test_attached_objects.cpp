@@ -81,6 +81,38 @@ bool collides(const dss::ModelSetup& s, const std::string& checker, double j1, d
   return c->collides(q);
 }
 
+// n random group states of the model: dss and fcl-hull give the same verdict on each. The
+// colliding states, and per name of `names` the contacts (by exact DSS) that name it.
+struct Agreement {
+  int colliding = 0;
+  std::vector<int> found;
+};
+Agreement agreeWithFcl(const std::shared_ptr<const dss::CollisionModel>& model, int n,
+                       unsigned seed, const std::vector<std::string>& names) {
+  dss::DssChecker c(model, {});
+  dss::CheckerConfig fcl;
+  fcl.checker = "fcl-hull";
+  const auto f = dss::makeStateChecker(model, fcl);
+  std::mt19937_64 rng(seed);
+  Agreement out;
+  out.found.assign(names.size(), 0);
+  for (int k = 0; k < n; ++k) {
+    const std::vector<double> q = dss_test::randomGroupState(*model, rng);
+    const bool hit = c.collides(q.data());
+    BOOST_TEST(hit == f->collides(q.data()), "state " << k);
+    out.colliding += hit;
+    if (!hit) continue;
+    const auto contacts = dss::contactsAt(c, q.data());
+    BOOST_REQUIRE(contacts.has_value());
+    for (const dss::Contact& x : *contacts) {
+      const std::string d = dss::describeContact(c.model(), x);
+      for (std::size_t i = 0; i < names.size(); ++i)
+        out.found[i] += d.find(names[i]) != std::string::npos;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(attached_objects)
@@ -178,18 +210,11 @@ BOOST_AUTO_TEST_CASE(a_request_start_object_is_placed_at_the_start_state) {
   // there: it lands in l1 as the rod given in l1's frame.
   const double a = 0.7, c = std::cos(a), s = std::sin(a);
   dss::Scene scene = dss::parsePlanningSceneYaml(kWorld, "held.yaml");
-  dss::AttachedObject rod;
-  rod.id = "rod";
-  rod.link = "l1";
-  rod.at = "request.yaml:4";
+  Eigen::Isometry3d X_WR(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()));
+  X_WR.translation() = Eigen::Vector3d(0.45 * c - 0.1 * s, 0.45 * s + 0.1 * c, 0.3);
+  dss::AttachedObject rod = dss_test::heldBox("rod", "l1", Eigen::Vector3d(0.4, 0.04, 0.04), X_WR,
+                                              "world", "request.yaml:4");
   rod.at_request_start = true;
-  dss::Obstacle part;
-  part.name = part.object_id = "rod";
-  part.frame_id = "world";
-  part.shape = dss::Box::fromSize(Eigen::Vector3d(0.4, 0.04, 0.04));
-  part.X_FO.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  part.X_FO.translation() = Eigen::Vector3d(0.45 * c - 0.1 * s, 0.45 * s + 0.1 * c, 0.3);
-  rod.parts.push_back(part);
   scene.attached.push_back(rod);
   const dss::ModelSetup m = dss::setupModel(holder(), scene, "arm", {{"j1", a}});
   const dss::ModelSetup ref = setup(sceneWith("l1", kRodInL1, "l2"));
@@ -234,25 +259,9 @@ BOOST_AUTO_TEST_CASE(models_holding_the_same_object_share_one_robot) {
 
 BOOST_AUTO_TEST_CASE(random_states_agree_with_fcl_and_reach_the_rod) {
   const dss::ModelSetup m = setup(sceneWith("l1", kRodInL1, "l2"));
-  dss::DssChecker c(m.model, {});
-  dss::CheckerConfig fcl;
-  fcl.checker = "fcl-hull";
-  const auto f = dss::makeStateChecker(m.model, fcl);
-  std::mt19937_64 rng(11);
-  int colliding = 0, by_rod = 0;
-  for (int k = 0; k < 2000; ++k) {
-    const std::vector<double> q = dss_test::randomGroupState(*m.model, rng);
-    const bool hit = c.collides(q.data());
-    BOOST_TEST(hit == f->collides(q.data()), "state " << k);
-    colliding += hit;
-    if (!hit) continue;
-    const auto contacts = dss::contactsAt(c, q.data());
-    BOOST_REQUIRE(contacts.has_value());
-    for (const dss::Contact& x : *contacts)
-      by_rod += dss::describeContact(c.model(), x).find("rod") != std::string::npos;
-  }
-  BOOST_TEST(colliding > 0);
-  BOOST_TEST(by_rod > 0);
+  const Agreement a = agreeWithFcl(m.model, 2000, 11, {"rod"});
+  BOOST_TEST(a.colliding > 0);
+  BOOST_TEST(a.found[0] > 0);
 }
 
 BOOST_AUTO_TEST_CASE(a_crate_on_our_mobile_base_agrees_with_fcl) {
@@ -260,44 +269,17 @@ BOOST_AUTO_TEST_CASE(a_crate_on_our_mobile_base_agrees_with_fcl) {
   // rides the whole body.
   dss_test::MobileSetup mob = dss_test::mobileSetup("dss_mobile_base", "aisle");
   dss::Scene scene = dss::loadScene(mob.scene_file);
-  auto box = [](const std::string& id, const std::string& link, const Eigen::Vector3d& size,
-                const Eigen::Vector3d& at) {
-    dss::AttachedObject a;
-    a.id = id;
-    a.link = link;
-    a.at = "test";
-    dss::Obstacle part;
-    part.name = part.object_id = id;
-    part.frame_id = link;
-    part.shape = dss::Box::fromSize(size);
-    part.X_FO.translation() = at;
-    a.parts.push_back(part);
-    return a;
+  auto at = [](double x, double y, double z) {
+    return Eigen::Isometry3d(Eigen::Translation3d(x, y, z));
   };
-  scene.attached.push_back(box("crate", "base_link", {0.3, 0.3, 0.2}, {0.0, 0.45, 0.3}));
-  scene.attached.push_back(box("tray", "gripper_link", {0.3, 0.3, 0.02}, {0.15, 0.0, 0.0}));
+  scene.attached.push_back(
+      dss_test::heldBox("crate", "base_link", {0.3, 0.3, 0.2}, at(0.0, 0.45, 0.3)));
+  scene.attached.push_back(
+      dss_test::heldBox("tray", "gripper_link", {0.3, 0.3, 0.02}, at(0.15, 0.0, 0.0)));
   const dss::ModelSetup m = dss::setupModel(mob.robot, scene, mob.setup.group, {});
-  dss::DssChecker c(m.model, {});
-  dss::CheckerConfig fcl;
-  fcl.checker = "fcl-hull";
-  const auto f = dss::makeStateChecker(m.model, fcl);
-  std::mt19937_64 rng(23);
-  int crate = 0, tray = 0;
-  for (int k = 0; k < 3000; ++k) {
-    const std::vector<double> q = dss_test::randomGroupState(*m.model, rng);
-    const bool hit = c.collides(q.data());
-    BOOST_TEST(hit == f->collides(q.data()), "state " << k);
-    if (!hit) continue;
-    const auto contacts = dss::contactsAt(c, q.data());
-    BOOST_REQUIRE(contacts.has_value());
-    for (const dss::Contact& x : *contacts) {
-      const std::string d = dss::describeContact(c.model(), x);
-      crate += d.find("'crate'") != std::string::npos;
-      tray += d.find("'tray'") != std::string::npos;
-    }
-  }
-  BOOST_TEST(crate > 0);
-  BOOST_TEST(tray > 0);
+  const Agreement a = agreeWithFcl(m.model, 3000, 23, {"'crate'", "'tray'"});
+  BOOST_TEST(a.found[0] > 0);
+  BOOST_TEST(a.found[1] > 0);
 }
 
 BOOST_AUTO_TEST_CASE(bad_attachments_name_the_file_the_line_and_the_object) {

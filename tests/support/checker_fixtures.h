@@ -44,23 +44,32 @@ inline dss::ModelSetup shelfSetup(const dss::LoadedRobot& robot) {
                          req.startState());
 }
 
+/// An object the robot holds: one box of `size` at `X_FO` in `frame` (its holding link when
+/// empty), read from `at`.
+inline dss::AttachedObject heldBox(const std::string& id, const std::string& link,
+                                   const Eigen::Vector3d& size, const Eigen::Isometry3d& X_FO,
+                                   const std::string& frame = "", const std::string& at = "test") {
+  dss::AttachedObject a;
+  a.id = id;
+  a.link = link;
+  a.at = at;
+  dss::Obstacle part;
+  part.name = part.object_id = id;
+  part.frame_id = frame.empty() ? link : frame;
+  part.shape = dss::Box::fromSize(size);
+  part.X_FO = X_FO;
+  part.description = "box";
+  a.parts.push_back(part);
+  return a;
+}
+
 /// The same, the arm holding a bar between its fingers (an attached object on its tool link,
 /// 0.4 m along the tool's z from 0.02 to 0.42), which reaches the shelf and the arm's own links.
 inline dss::ModelSetup shelfSetupHoldingBar(const dss::LoadedRobot& robot) {
   const auto req = dss::loadPlanRequestYaml(kArmDir + "/scenes/shelf_request.yaml");
   dss::Scene scene = dss::loadScene(kArmDir + "/scenes/shelf.yaml");
-  dss::AttachedObject bar;
-  bar.id = "bar";
-  bar.link = "tool";
-  bar.at = "checker_fixtures.h";
-  dss::Obstacle part;
-  part.name = part.object_id = "bar";
-  part.frame_id = "tool";
-  part.shape = dss::Box::fromSize(Eigen::Vector3d(0.03, 0.04, 0.4));
-  part.X_FO.translation() = Eigen::Vector3d(0.0, 0.0, 0.22);
-  part.description = "box 0.03 x 0.04 x 0.4";
-  bar.parts.push_back(part);
-  scene.attached.push_back(bar);
+  scene.attached.push_back(heldBox("bar", "tool", Eigen::Vector3d(0.03, 0.04, 0.4),
+                                   Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 0.22))));
   return dss::setupModel(robot, std::move(scene), req.group_name, req.startState());
 }
 
