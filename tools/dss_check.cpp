@@ -1,7 +1,8 @@
 // dss_check: validity of robot states (CSV, or uniform random ones) against a scene with one
 // or several checkers. stdout: 1/0 per state for the first checker; stderr: one JSON summary
 // per checker (states, valid, median microseconds per state over repetitions, disagreements
-// against the first checker). --describe prints the model as JSON instead.
+// against the first checker). --describe prints the model as JSON instead; --motions checks
+// the motions between the states instead (motion_checks.h).
 #include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -25,6 +26,7 @@
 #include "dss/robot/joint_states_csv.h"
 #include "dss/scene/scene_loader.h"
 #include "mesh_cli.h"
+#include "motion_checks.h"
 
 namespace {
 
@@ -47,10 +49,18 @@ const char* kUsage =
     "                 most about N cells, 0 for none; default 65536)\n"
     "                 [--scene-mesh-parts N]  (a scene mesh: the hulls of its connected\n"
     "                 parts, at most N, in [1, 4096]; default 16; 1: one hull per mesh)\n"
+    "                 [--motions discrete|vector|continuous|ompl[,...]] [--resolution f]\n"
+    "                 [--motion-length f]\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "  --contacts: each line of a state the first checker calls colliding also names the\n"
     "  pairs that collide there (exact DSS with the same paddings), after a tab\n"
+    "  --motions: check motions instead of states, each listed motion validator on the one\n"
+    "  --checker: the path from each row of --states to the next, or --random N motions (a\n"
+    "  valid start towards a uniform state, cut to a length uniform up to --motion-length\n"
+    "  times the space's extent, in (0, 1], default 0.2); stdout: 1/0 per motion for the\n"
+    "  first validator (with --contacts, its first colliding state and pairs);\n"
+    "  --resolution f in (0, 1]: OMPL's state validity checking resolution (0.01)\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
     "robot meshes:\n";
 
@@ -176,6 +186,9 @@ int run(int argc, char** argv) {
   bool box_stage = true;
   int threads = 1;
   std::vector<double> workspace;
+  std::string motions;  // --motions: the motion validators
+  double resolution = 0.01, motion_length = 0.2;
+  bool motion_option = false;  // --resolution or --motion-length given
   const std::string usage = std::string(kUsage) + dss::cli::kMeshOptionsUsage;
   dss::cli::ArgCursor cli(argc, argv, "dss_check", usage.c_str());
   dss::MeshGeometryOptions meshes;
@@ -221,12 +234,42 @@ int run(int argc, char** argv) {
       workspace = cli.numbers(6);
     else if (cli.option("--threads"))
       threads = static_cast<int>(cli.integer(1, kMaxThreads));
+    else if (cli.option("--motions"))
+      motions = cli.value();
+    else if (cli.option("--resolution"))
+      resolution = cli.number(0, 1), motion_option = true;
+    else if (cli.option("--motion-length"))
+      motion_length = cli.number(0, 1), motion_option = true;
     else
       cli.unknown();
   }
   if (robot.empty()) cli.error("--robot is required");
   if (!do_describe && states.empty() && random_n <= 0)
     cli.error("--states or --random is required");
+  std::vector<std::string> validators;
+  if (motion_option && motions.empty())
+    cli.error("--resolution and --motion-length apply to --motions only");
+  if (!motions.empty()) {
+    std::istringstream is(motions);
+    std::string v;
+    while (std::getline(is, v, ','))
+      if (!dss_check::knownMotionValidator(v))
+        cli.error("--motions: expected discrete, vector, continuous or ompl, got '" + v + "'");
+      else
+        validators.push_back(v);
+    if (validators.empty() || motions.back() == ',')
+      cli.error("--motions: expected a comma list of motion validators, got '" + motions + "'");
+    if (checkers.find(',') != std::string::npos)
+      cli.error("--motions: every motion validator stands on one --checker, got '" + checkers +
+                "'");
+    if (threads > 1)
+      cli.error("--motions: one thread only (--threads " + std::to_string(threads) + ")");
+    if (checkers != "dss" &&
+        std::find(validators.begin(), validators.end(), "continuous") != validators.end())
+      cli.error("--motions: the continuous validator needs --checker dss, got '" + checkers + "'");
+    if (resolution <= 0) cli.error("--resolution: expected a number in (0, 1]");
+    if (motion_length <= 0) cli.error("--motion-length: expected a number in (0, 1]");
+  }
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
@@ -274,46 +317,11 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // States as vectors of every active joint's value. A CSV sets the joints it names (joints
-  // outside the group too: such a state takes the full kinematics), the others keep their held
-  // values; it must name every joint of the group. Random states are uniform in the group's
-  // space.
-  const std::size_t nq = r.model->numActiveJoints();
-  std::vector<std::vector<double>> st;
-  if (!states.empty()) {
-    dss::JointStatesCsv csv = dss::readJointStatesCsv(states, *r.model, p.map->held());
-    for (const std::string& name : p.map->jointNames())
-      if (std::find(csv.columns.begin(), csv.columns.end(), name) == csv.columns.end())
-        throw std::runtime_error(states + ": the header lacks joint '" + name + "' of group '" +
-                                 p.group + "'");
-    st = std::move(csv.states);
-  } else {
-    auto sampler = p.si->allocStateSampler();
-    ompl::base::ScopedState<> s(p.si->getStateSpace());
-    std::vector<double> q(nq);
-    for (long i = 0; i < random_n; ++i) {
-      sampler->sampleUniform(s.get());
-      p.map->toJoints(s.get(), q.data());
-      st.push_back(q);
-    }
-  }
-
-  std::vector<std::string> names_list;
-  {
-    std::istringstream is(checkers);
-    std::string c;
-    while (std::getline(is, c, ',')) names_list.push_back(c);
-  }
-  if (repeat <= 0) repeat = st.size() >= 10000 ? 5 : st.size() >= 1000 ? 11 : 31;
-  // Every checker is built first; then the repetitions run interleaved (checker 1, 2, ...,
-  // then again), after one untimed warm-up pass each, so that a slow phase of a shared machine
-  // hits every checker alike and the ratios of medians stay meaningful.
-  std::vector<std::shared_ptr<const dss::StateChecker>> built;
-  for (std::size_t k = 0; k < names_list.size(); ++k) {
+  // A checker's configuration by name. "fcl-hull:sweep": FCL behind the DSS checker's own
+  // sphere/oriented-box sweep instead of FCL's world AABBs.
+  auto configFor = [&](const std::string& name) {
     dss::CheckerConfig cfg;
-    cfg.checker = names_list[k];
-    // "fcl-hull:sweep": FCL behind the DSS checker's own sphere/oriented-box sweep instead of
-    // FCL's world AABBs.
+    cfg.checker = name;
     if (cfg.checker.size() > 6 && cfg.checker.compare(cfg.checker.size() - 6, 6, ":sweep") == 0 &&
         cfg.checker.rfind("fcl-", 0) == 0) {
       cfg.checker.resize(cfg.checker.size() - 6);
@@ -328,6 +336,62 @@ int run(int argc, char** argv) {
     else
       cfg.dss_options.mode = dss::Mode::kFloat;  // checked when parsed
     cfg.obb_stage = box_stage;
+    return cfg;
+  };
+
+  // States as vectors of every active joint's value. A CSV sets the joints it names (joints
+  // outside the group too: such a state takes the full kinematics), the others keep their held
+  // values; it must name every joint of the group. Random states are uniform in the group's
+  // space.
+  const std::size_t nq = r.model->numActiveJoints();
+  std::vector<std::vector<double>> st;
+  std::vector<int> lines;  // of the CSV's rows
+  if (!states.empty()) {
+    dss::JointStatesCsv csv = dss::readJointStatesCsv(states, *r.model, p.map->held());
+    for (const std::string& name : p.map->jointNames())
+      if (std::find(csv.columns.begin(), csv.columns.end(), name) == csv.columns.end())
+        throw std::runtime_error(states + ": the header lacks joint '" + name + "' of group '" +
+                                 p.group + "'");
+    st = std::move(csv.states);
+    lines = std::move(csv.lines);
+  } else if (validators.empty()) {
+    auto sampler = p.si->allocStateSampler();
+    ompl::base::ScopedState<> s(p.si->getStateSpace());
+    std::vector<double> q(nq);
+    for (long i = 0; i < random_n; ++i) {
+      sampler->sampleUniform(s.get());
+      p.map->toJoints(s.get(), q.data());
+      st.push_back(q);
+    }
+  }
+
+  if (!validators.empty()) {
+    dss_check::MotionCheckOptions mo;
+    mo.validators = validators;
+    mo.checker = configFor(checkers);
+    mo.resolution = resolution;
+    mo.motion_length = motion_length;
+    mo.random = states.empty() ? random_n : 0;
+    mo.repeat = repeat;
+    mo.contacts = contacts;
+    mo.path_file = states;
+    dss_check::checkMotions(p, st, lines, mo);
+    return 0;
+  }
+
+  std::vector<std::string> names_list;
+  {
+    std::istringstream is(checkers);
+    std::string c;
+    while (std::getline(is, c, ',')) names_list.push_back(c);
+  }
+  if (repeat <= 0) repeat = st.size() >= 10000 ? 5 : st.size() >= 1000 ? 11 : 31;
+  // Every checker is built first; then the repetitions run interleaved (checker 1, 2, ...,
+  // then again), after one untimed warm-up pass each, so that a slow phase of a shared machine
+  // hits every checker alike and the ratios of medians stay meaningful.
+  std::vector<std::shared_ptr<const dss::StateChecker>> built;
+  for (std::size_t k = 0; k < names_list.size(); ++k) {
+    const dss::CheckerConfig cfg = configFor(names_list[k]);
     auto checker = dss::makeStateChecker(p.model, cfg);
     built.push_back(checker);
   }

@@ -1,0 +1,141 @@
+// dss_check --motions: motions between states checked by OMPL motion validators from the
+// command line (tools/motion_checks.h): the validators' verdicts against each other, a path
+// read from a states file, and the errors of a path or options that motions cannot take.
+#include <boost/test/unit_test.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "support/run_tool.h"
+#include "support/temp_files.h"
+
+namespace {
+
+const std::string kArm = std::string(DSS_SOURCE_DIR) + "/robots/dss_arm7";
+const std::string kBase = std::string(DSS_SOURCE_DIR) + "/robots/dss_mobile_base";
+
+std::vector<std::string> armArgs(std::vector<std::string> more) {
+  std::vector<std::string> a = {"--robot", kArm + "/dss_arm7.urdf",
+                                "--srdf",  kArm + "/dss_arm7.srdf",
+                                "--scene", kArm + "/scenes/shelf.yaml"};
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+// The JSON summaries a run printed on stderr, one per motion validator.
+std::vector<nlohmann::json> summaries(const std::string& err) {
+  std::vector<nlohmann::json> out;
+  for (const std::string& l : dss_test::outputLines(err))
+    if (!l.empty() && l[0] == '{') out.push_back(nlohmann::json::parse(l));
+  return out;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(motion_checks_cli)
+
+BOOST_AUTO_TEST_CASE(the_validators_agree_where_they_must_on_random_motions) {
+  // The same 400 random motions (the seed draws them) under every validator: the vector and
+  // OMPL's validators check the discrete validator's states, so they give its verdicts motion
+  // by motion; the continuous one never calls free a motion with a colliding state.
+  const std::vector<std::string> common = {"--random", "400", "--seed", "3", "--repeat", "1"};
+  std::vector<std::string> first_discrete = common, first_continuous = common;
+  first_discrete.insert(first_discrete.end(), {"--motions", "discrete,vector,ompl,continuous"});
+  first_continuous.insert(first_continuous.end(), {"--motions", "continuous"});
+  const dss_test::ToolRun d = dss_test::runTool("dss_check", armArgs(first_discrete));
+  const dss_test::ToolRun c = dss_test::runTool("dss_check", armArgs(first_continuous));
+  BOOST_REQUIRE_MESSAGE(d.exit_code == 0, d.err);
+  BOOST_REQUIRE_MESSAGE(c.exit_code == 0, c.err);
+  const std::vector<nlohmann::json> s = summaries(d.err);
+  BOOST_REQUIRE(s.size() == 4u);
+  BOOST_TEST(s[0]["motion_validator"] == "discrete");
+  BOOST_TEST(s[0]["motions"] == 400);
+  BOOST_TEST(s[0]["source"] == "random");
+  BOOST_TEST(s[1]["disagreements"] == 0);  // vector
+  BOOST_TEST(s[2]["disagreements"] == 0);  // OMPL's own
+  BOOST_TEST(s[0]["states_per_motion"].get<double>() >= 1.0);
+  BOOST_TEST(s[3].contains("sub_motions_per_motion"));
+  const std::vector<std::string> dv = dss_test::outputLines(d.out),
+                                 cv = dss_test::outputLines(c.out);
+  BOOST_REQUIRE(dv.size() == 400u);
+  BOOST_REQUIRE(cv.size() == 400u);
+  int free = 0, colliding = 0, refused_by_continuous_only = 0;
+  for (std::size_t i = 0; i < dv.size(); ++i) {
+    BOOST_REQUIRE(dv[i] == "0" || dv[i] == "1");
+    free += dv[i] == "1";
+    colliding += dv[i] == "0";
+    if (cv[i] == "1") BOOST_TEST(dv[i] == "1", "motion " << i);
+    refused_by_continuous_only += cv[i] == "0" && dv[i] == "1";
+  }
+  // Both verdicts occur, and the summary counts what the lines say.
+  BOOST_TEST(free > 0);
+  BOOST_TEST(colliding > 0);
+  BOOST_TEST(s[0]["valid"] == free);
+  BOOST_TEST(s[3]["disagreements"] == refused_by_continuous_only);
+}
+
+BOOST_AUTO_TEST_CASE(a_path_from_a_states_file_names_where_it_collides) {
+  // The shelf request's start, its goal (the straight motion between them crosses the shelf),
+  // the goal again (a motion of length zero) and back to the start.
+  const std::string csv =
+      "joint1,joint2,joint3,joint4,joint5,joint6,joint7\n"
+      "0.19,0.5783,0,-1.6413,0,-0.6488,0.4\n"
+      "-0.19,0.3763,0,-1.0201,0,0.1744,-0.6\n"
+      "-0.19,0.3763,0,-1.0201,0,0.1744,-0.6\n";
+  const std::string file = dss_test::writeScratch("motion_checks_cli", "path.csv", csv);
+  const dss_test::ToolRun r = dss_test::runTool(
+      "dss_check",
+      armArgs({"--states", file, "--motions", "vector,discrete", "--contacts", "--repeat", "1"}));
+  BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const std::vector<std::string> lines = dss_test::outputLines(r.out);
+  BOOST_REQUIRE(lines.size() == 2u);
+  BOOST_TEST(lines[0].rfind("0\tat ", 0) == 0, lines[0]);
+  BOOST_TEST(lines[0].find(" of the motion: link ") != std::string::npos, lines[0]);
+  BOOST_TEST(lines[0].find("with scene object '") != std::string::npos, lines[0]);
+  BOOST_TEST(lines[1] == "1");
+  const std::vector<nlohmann::json> s = summaries(r.err);
+  BOOST_REQUIRE(s.size() == 2u);
+  BOOST_TEST(s[0]["source"] == "path");
+  BOOST_TEST(s[0]["motions"] == 2);
+  BOOST_TEST(s[1]["disagreements"] == 0);
+}
+
+BOOST_AUTO_TEST_CASE(paths_and_options_motions_cannot_take_are_refused) {
+  const std::string one_row =
+      dss_test::writeScratch("motion_checks_cli", "one_row.csv",
+                             "joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0,0,0,-1,0,0,0\n");
+  const dss_test::ToolRun r1 =
+      dss_test::runTool("dss_check", armArgs({"--states", one_row, "--motions", "discrete"}));
+  BOOST_TEST(r1.exit_code == 1);
+  BOOST_TEST(r1.err.find(one_row + ": --motions needs a path of at least two states, got 1") !=
+                 std::string::npos,
+             r1.err);
+  // The mobile base's arm group holds the base: a row that moves it is not a motion of the arm.
+  const std::string moved = dss_test::writeScratch(
+      "motion_checks_cli", "moved_base.csv", "mast_lift,arm_pitch,base/x\n0.2,0,0\n0.3,0.1,0.5\n");
+  const dss_test::ToolRun r2 =
+      dss_test::runTool("dss_check", {"--robot", kBase + "/dss_mobile_base.urdf", "--srdf",
+                                      kBase + "/dss_mobile_base.srdf", "--group", "mast_arm",
+                                      "--states", moved, "--motions", "discrete"});
+  BOOST_TEST(r2.exit_code == 1);
+  BOOST_TEST(
+      r2.err.find(moved + ":3: joint 'base/x' is not in group 'mast_arm'") != std::string::npos,
+      r2.err);
+  auto usage = [](std::vector<std::string> more, const std::string& says) {
+    const dss_test::ToolRun r = dss_test::runTool("dss_check", armArgs(more));
+    BOOST_TEST(r.exit_code == 2, says);
+    BOOST_TEST(r.err.find(says) != std::string::npos, r.err);
+  };
+  usage({"--random", "5", "--motions", "warp"}, "--motions: expected discrete, vector");
+  usage({"--random", "5", "--motions", "discrete,"}, "--motions: expected a comma list");
+  usage({"--random", "5", "--motions", "continuous", "--checker", "fcl-hull"},
+        "the continuous validator needs --checker dss");
+  usage({"--random", "5", "--motions", "discrete", "--checker", "dss,fcl-hull"},
+        "every motion validator stands on one --checker");
+  usage({"--random", "5", "--motions", "discrete", "--threads", "2"}, "one thread only");
+  usage({"--random", "5", "--motions", "discrete", "--resolution", "0"}, "--resolution");
+  usage({"--random", "5", "--motions", "discrete", "--motion-length", "2"}, "--motion-length");
+  usage({"--random", "5", "--resolution", "0.02"}, "apply to --motions only");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
