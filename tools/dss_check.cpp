@@ -13,6 +13,7 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -282,6 +283,7 @@ int run(int argc, char** argv) {
   // Every stored warning reaches the user: the robot's and the SRDF's here, the scene's
   // through the problem's warnings below.
   for (const auto& w : r.warnings()) std::cerr << "dss_check: warning: " << w << "\n";
+  std::map<std::string, double> path_start;  // --motions on a path: its first state by name
   if (!states.empty()) {
     // A CSV may hold joint values outside the URDF limits (MotionBenchMaker's Panda fingers at
     // 0.065 against 0.04). The model is built with those limits widened to cover them, so that
@@ -289,6 +291,14 @@ int run(int argc, char** argv) {
     // joint is reported.
     const dss::JointStatesCsv csv =
         dss::readJointStatesCsv(states, *r.model, r.model->defaultState());
+    // A path's motions move the group alone: the joints outside it are held at the values of
+    // the path's first state (motion_checks.h refuses a row that moves them).
+    if (!validators.empty() && !csv.states.empty())
+      for (std::size_t a = 0; a < r.model->numActiveJoints(); ++a) {
+        const std::string& name = r.model->joints[r.model->active_joints[a]].name;
+        if (std::find(csv.columns.begin(), csv.columns.end(), name) != csv.columns.end())
+          path_start[name] = csv.states.front()[a];
+      }
     auto widened = std::make_shared<dss::RobotModel>(*r.model);
     for (std::size_t a = 0; a < widened->numActiveJoints(); ++a) {
       dss::RobotJoint& j = widened->joints[widened->active_joints[a]];
@@ -310,7 +320,7 @@ int run(int argc, char** argv) {
   dss::CollisionModelOptions options;
   options.prune_margin = padding;
   if (base_table_cells >= 0) options.base_table_cells = std::size_t(base_table_cells);
-  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, {}, options);
+  const dss::Problem p = dss::makeProblem(r, std::move(scene), group, path_start, options);
   for (const auto& w : p.warnings) std::cerr << "dss_check: warning: " << w << "\n";
   if (do_describe) {
     std::cout << describe(p).dump(2) << "\n";

@@ -61,9 +61,10 @@ std::vector<Motion> pathMotions(const dss::Problem& p, const std::vector<std::ve
     for (std::size_t a = 0; a < q.size(); ++a)
       if (!in_group[a] && !(q[a] == map.held()[a]))
         throw std::runtime_error(at + ": joint '" + robot.joints[robot.active_joints[a]].name +
-                                 "' is not in group '" + p.group + "' and differs from its held " +
-                                 "value " + std::to_string(map.held()[a]) +
-                                 ": a motion moves the group's joints only");
+                                 "' is not in group '" + p.group + "' and differs from its " +
+                                 "value in the path's first state (" + std::to_string(q[a]) +
+                                 " against " + std::to_string(map.held()[a]) +
+                                 "): a motion moves the group's joints only");
     for (std::size_t k = 0; k < g.size(); ++k) g[k] = q[std::size_t(map.groupActive()[k])];
     ob::ScopedState<> s(p.si->getStateSpace());
     map.fromGroupValues(g.data(), s.get());

@@ -32,8 +32,8 @@ bool knownMotionValidator(const std::string& name);
 /// Checks and times the motions; `path`: every active joint's value per state (the rows of
 /// `path_file`, at file lines `lines`), used when `random` is 0. Throws std::runtime_error
 /// naming the file and line for a path that motions cannot follow (fewer than two states, a
-/// joint outside the group away from its held value), and for random motions whose start
-/// cannot be found.
+/// joint outside the group away from its held value: the caller holds them at the path's first
+/// state), and for random motions whose start cannot be found.
 void checkMotions(const dss::Problem& p, const std::vector<std::vector<double>>& path,
                   const std::vector<int>& lines, const MotionCheckOptions& options);
 

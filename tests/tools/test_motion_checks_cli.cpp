@@ -110,13 +110,21 @@ BOOST_AUTO_TEST_CASE(paths_and_options_motions_cannot_take_are_refused) {
   BOOST_TEST(r1.err.find(one_row + ": --motions needs a path of at least two states, got 1") !=
                  std::string::npos,
              r1.err);
-  // The mobile base's arm group holds the base: a row that moves it is not a motion of the arm.
+  // The mobile base's arm group holds the base at the path's first state: a path that keeps the
+  // base there is the arm's motions, one that moves it is not.
+  auto baseRun = [](const std::string& file) {
+    return dss_test::runTool("dss_check", {"--robot", kBase + "/dss_mobile_base.urdf", "--srdf",
+                                           kBase + "/dss_mobile_base.srdf", "--group", "mast_arm",
+                                           "--states", file, "--motions", "discrete"});
+  };
+  const std::string kept = dss_test::writeScratch(
+      "motion_checks_cli", "kept_base.csv", "mast_lift,arm_pitch,base/x\n0.2,0,0.5\n0.3,0.1,0.5\n");
+  const dss_test::ToolRun r0 = baseRun(kept);
+  BOOST_TEST(r0.exit_code == 0, r0.err);
+  BOOST_TEST(dss_test::outputLines(r0.out).size() == 1u);
   const std::string moved = dss_test::writeScratch(
       "motion_checks_cli", "moved_base.csv", "mast_lift,arm_pitch,base/x\n0.2,0,0\n0.3,0.1,0.5\n");
-  const dss_test::ToolRun r2 =
-      dss_test::runTool("dss_check", {"--robot", kBase + "/dss_mobile_base.urdf", "--srdf",
-                                      kBase + "/dss_mobile_base.srdf", "--group", "mast_arm",
-                                      "--states", moved, "--motions", "discrete"});
+  const dss_test::ToolRun r2 = baseRun(moved);
   BOOST_TEST(r2.exit_code == 1);
   BOOST_TEST(
       r2.err.find(moved + ":3: joint 'base/x' is not in group 'mast_arm'") != std::string::npos,
