@@ -40,6 +40,9 @@ double median(std::vector<double> v) {
 
 struct Motion {
   ob::ScopedState<> from, to;
+  /// Both ends hold finite values only. A motion with NaN or Inf at an end is colliding for
+  /// every validator, which is not asked (OMPL's segment count of such a motion is undefined).
+  bool finite = true;
 };
 
 // The path's rows as the group's states: a joint outside the group must keep its held value
@@ -70,8 +73,13 @@ std::vector<Motion> pathMotions(const dss::Problem& p, const std::vector<std::ve
     map.fromGroupValues(g.data(), s.get());
     states.push_back(s);
   }
+  std::vector<char> finite(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i)
+    finite[i] =
+        std::all_of(path[i].begin(), path[i].end(), [](double v) { return std::isfinite(v); });
   std::vector<Motion> motions;
-  for (std::size_t i = 0; i + 1 < states.size(); ++i) motions.push_back({states[i], states[i + 1]});
+  for (std::size_t i = 0; i + 1 < states.size(); ++i)
+    motions.push_back({states[i], states[i + 1], finite[i] && finite[i + 1]});
   return motions;
 }
 
@@ -111,6 +119,7 @@ std::vector<Motion> randomMotions(const dss::Problem& p, long count, double leng
 // collides there: the states the discrete validator checks, in order from the start.
 std::string explain(const dss::Problem& p, const dss::ValidityChecker& vc,
                     const ob::MotionValidator& in_order, const Motion& m) {
+  if (!m.finite) return "a state of the motion holds a value that is not finite";
   const ob::StateSpacePtr& space = p.si->getStateSpace();
   ob::ScopedState<> s(space);
   std::pair<ob::State*, double> last{s.get(), 0.0};
@@ -179,7 +188,7 @@ void checkMotions(const dss::Problem& p, const std::vector<std::vector<double>>&
       const auto t0 = std::chrono::steady_clock::now();
       const double c0 = threadCpuSeconds();
       for (std::size_t i = 0; i < motions.size(); ++i)
-        v[i] = mv.checkMotion(motions[i].from.get(), motions[i].to.get());
+        v[i] = motions[i].finite && mv.checkMotion(motions[i].from.get(), motions[i].to.get());
       const double c1 = threadCpuSeconds();
       const auto t1 = std::chrono::steady_clock::now();
       if (rep < 0) {

@@ -100,6 +100,28 @@ BOOST_AUTO_TEST_CASE(a_path_from_a_states_file_names_where_it_collides) {
   BOOST_TEST(s[1]["disagreements"] == 0);
 }
 
+BOOST_AUTO_TEST_CASE(a_motion_to_or_from_a_non_finite_state_collides) {
+  // NaN and Inf are never free: both motions touching the second row collide under every
+  // validator, and the line says why; the last motion (finite ends) is checked as usual.
+  const std::string file = dss_test::writeScratch(
+      "motion_checks_cli", "non_finite.csv",
+      "joint1,joint2,joint3,joint4,joint5,joint6,joint7\n0,0,0,-1,0,0,0\nnan,0,0,-1,0,0,0\n"
+      "0,0,0,-1,0,0,inf\n0,0,0,-1,0,0,0.1\n0,0,0,-1,0,0,0.2\n");
+  const dss_test::ToolRun r = dss_test::runTool(
+      "dss_check", armArgs({"--states", file, "--motions", "discrete,vector,continuous,ompl",
+                            "--contacts", "--repeat", "1"}));
+  BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const std::vector<std::string> lines = dss_test::outputLines(r.out);
+  BOOST_REQUIRE(lines.size() == 4u);
+  for (int i = 0; i < 3; ++i)
+    BOOST_TEST(lines[std::size_t(i)] ==
+               "0\ta state of the motion holds a value that is not finite");
+  BOOST_TEST(lines[3] == "1");
+  const std::vector<nlohmann::json> s = summaries(r.err);
+  BOOST_REQUIRE(s.size() == 4u);
+  for (const auto& j : s) BOOST_TEST(j["valid"] == 1);
+}
+
 BOOST_AUTO_TEST_CASE(paths_and_options_motions_cannot_take_are_refused) {
   const std::string one_row =
       dss_test::writeScratch("motion_checks_cli", "one_row.csv",
