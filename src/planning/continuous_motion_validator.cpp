@@ -26,7 +26,14 @@ bool ContinuousMotionValidator::checkMotion(
     std::pair<ompl::base::State*, double>& lastValid) const {
   double last = 0.0;
   if (check(s1, s2, &last)) return true;
-  if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, last, lastValid.first);
+  // At fraction 0 the start itself (which the space's interpolation may not take when it is
+  // not finite).
+  if (lastValid.first) {
+    if (last == 0.0)
+      si_->getStateSpace()->copyState(lastValid.first, s1);
+    else
+      si_->getStateSpace()->interpolate(s1, s2, last, lastValid.first);
+  }
   lastValid.second = last;
   return false;
 }

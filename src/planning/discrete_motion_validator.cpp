@@ -44,13 +44,29 @@ bool DiscreteMotionValidator::directPath(const ValidityChecker* vc) const {
   return map_->plain() && vc && &vc->checker().model() == &motion_->checker().model();
 }
 
+bool DiscreteMotionValidator::nonFinite(const ob::State* s1, const ob::State* s2) const {
+  if (map_->finiteValues(s1) && map_->finiteValues(s2)) return false;
+  KindCounts& c = kind_counts_[0];
+  c.motions.fetch_add(1, std::memory_order_relaxed);
+  c.colliding.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  // NaN or infinity at an end: colliding, before the space measures the motion (its segment
+  // count would be undefined, and an SO(2) part asserts on such a state).
+  if (nonFinite(s1, s2)) return false;
   const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
   return check(s1, s2, n, nullptr);
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                           std::pair<ob::State*, double>& lastValid) const {
+  if (nonFinite(s1, s2)) {
+    lastValid.second = 0.0;
+    if (lastValid.first) si_->getStateSpace()->copyState(lastValid.first, s1);
+    return false;
+  }
   const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
   int first = 0;
   if (check(s1, s2, n, &first)) return true;

@@ -239,6 +239,15 @@ bool GroupStateMap::toJoints(const ob::State* s, double* q) const {
   return ok;
 }
 
+bool GroupStateMap::finiteValues(const ob::State* s) const {
+  thread_local std::vector<double> g;
+  if (g.size() < group_.size()) g.resize(group_.size());
+  toGroupValues(s, g.data());
+  for (std::size_t i = 0; i < group_.size(); ++i)
+    if (!std::isfinite(g[i])) return false;
+  return true;
+}
+
 void GroupStateMap::toGroupValues(const ob::State* s, double* g) const {
   if (plain_) {
     const double* v = s->as<ob::RealVectorStateSpace::StateType>()->values;

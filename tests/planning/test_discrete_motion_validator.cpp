@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <set>
@@ -498,4 +499,47 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_mbm_problems, DSS_N
   }
 }
 
+BOOST_AUTO_TEST_SUITE_END()
+
+// NaN and Inf are never free: a motion with a non-finite value at either end collides under
+// the discrete, vector and continuous validators, with and without lastValid (which then
+// says no state of the motion is valid), on a plain space and on one with an SO(2) part.
+BOOST_AUTO_TEST_SUITE(non_finite_ends)
+BOOST_AUTO_TEST_CASE(a_motion_with_nan_or_inf_at_an_end_collides) {
+  for (Case c : {ourCase("dss_arm7", "shelf"), turnerCase()}) {
+    const ob::SpaceInformationPtr& si = c.p.si;
+    const ob::StateSpacePtr& space = si->getStateSpace();
+    std::vector<ob::MotionValidatorPtr> validators = {
+        dss::makeDiscreteMotionValidator(c.p, *c.checker, false),
+        dss::makeDiscreteMotionValidator(c.p, *c.checker, true),
+        dss::makeContinuousMotionValidator(c.p, *c.checker)};
+    std::mt19937_64 rng(5);
+    ob::ScopedState<> free_state(space), bad(space), last(space);
+    int tries = 0;
+    do randomState(c, rng, free_state.get());
+    while (!si->isValid(free_state.get()) && ++tries < 1000);
+    BOOST_REQUIRE(si->isValid(free_state.get()));
+    const dss::GroupStateMap& map = *c.p.map;
+    std::vector<double> g(map.dimension());
+    for (const double v :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+          -std::numeric_limits<double>::infinity()})
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        map.toGroupValues(free_state.get(), g.data());
+        g[i] = v;
+        map.fromGroupValues(g.data(), bad.get());
+        for (std::size_t k = 0; k < validators.size(); ++k) {
+          const ob::MotionValidator& mv = *validators[k];
+          const std::string what = c.name + " validator " + std::to_string(k) + " value " +
+                                   std::to_string(i) + " = " + std::to_string(v);
+          BOOST_TEST(!mv.checkMotion(free_state.get(), bad.get()), what << " (end)");
+          BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get()), what << " (start)");
+          std::pair<ob::State*, double> lv{last.get(), -1.0};
+          BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get(), lv),
+                     what << " (start, lastValid)");
+          BOOST_TEST(lv.second == 0.0, what);
+        }
+      }
+  }
+}
 BOOST_AUTO_TEST_SUITE_END()

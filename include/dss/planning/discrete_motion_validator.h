@@ -14,10 +14,11 @@
 // value by value) and checked by that checker's state checker without an OMPL state or a
 // virtual call; otherwise the space interpolates them and the space information's validity
 // checker decides them. The end state always goes through the space information's validity
-// checker, as in OMPL. Motion counts are atomic (OMPL's own counters are not safe to increment
-// from several threads), also per kind of motion (towards a new state, or from a state just found
-// free towards a held one: MotionOrder), with the states each kind had checked one by one and
-// those batches proved free: where a plan's checking goes.
+// checker, as in OMPL. A motion with NaN or an infinity at either end is colliding (OMPL assumes
+// the start valid; such a start is not). Motion counts are atomic (OMPL's own counters are not safe
+// to increment from several threads), also per kind of motion (towards a new state, or from a state
+// just found free towards a held one: MotionOrder), with the states each kind had checked one by
+// one and those batches proved free: where a plan's checking goes.
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
@@ -63,6 +64,8 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
   MotionCounts counts(MotionOrder kind) const;
 
  private:
+  /// True (the motion counted as colliding) when s1 or s2 holds NaN or an infinity.
+  bool nonFinite(const ompl::base::State* s1, const ompl::base::State* s2) const;
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
              int* first_colliding) const;

@@ -52,6 +52,8 @@ class GroupStateMap {
   bool toJoints(const ompl::base::State* s, double* q) const;
   /// Group values (group order) <-> state.
   void toGroupValues(const ompl::base::State* s, double* g) const;
+  /// True when every group value of the state is finite (no NaN, no infinity).
+  bool finiteValues(const ompl::base::State* s) const;
   void fromGroupValues(const double* g, ompl::base::State* s) const;
   /// Group values from a joint-name map; missing names take the held value.
   std::vector<double> groupValues(const std::map<std::string, double>& by_name) const;
