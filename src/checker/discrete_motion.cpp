@@ -83,6 +83,12 @@ DiscreteMotionChecker::DiscreteMotionChecker(std::shared_ptr<const StateChecker>
 bool DiscreteMotionChecker::clear(const double* q0, const double* q1, int segments,
                                   double* last_valid_fraction, MotionOrder kind) const {
   const StateChecker& checker = *checker_;
+  // The start is assumed valid, but one outside the model's bounds (NaN, an infinity, a value
+  // beyond a limit) is not: with few segments its motion's checked states could all be free.
+  if (!checker.model().withinBounds(q0)) {
+    if (last_valid_fraction) *last_valid_fraction = 0.0;
+    return false;
+  }
   const std::size_t nq = checker.model().robot().numActiveJoints();
   const int n = std::max(1, segments);
   thread_local std::vector<double> q;

@@ -15,6 +15,7 @@
 
 #include "dss/checker/checker_setup.h"
 #include "dss/checker/continuous_motion.h"
+#include "dss/checker/discrete_motion.h"
 #include "dss/checker/dss_checker.h"
 #include "dss/robot/srdf.h"
 #include "dss/scene/plan_request.h"
@@ -294,6 +295,38 @@ BOOST_AUTO_TEST_CASE(invalid_states_have_no_clearance_and_no_clear_motion) {
     last = -1.0;
     BOOST_TEST(!motion.clear(q.data(), free_q.data(), &last), what);
     BOOST_TEST(last == 0.0, what);
+  }
+}
+
+// The discrete motion check (one by one and in batches) of a motion from or to an invalid
+// state: never clear, whatever the number of segments (with one segment only the end would be
+// checked); with the first colliding state asked for, the first state (fraction 0).
+BOOST_AUTO_TEST_CASE(a_discrete_motion_from_or_to_an_invalid_state_is_not_clear) {
+  const HeldOutside f;
+  const auto checker = std::make_shared<const dss::DssChecker>(f.model);
+  std::mt19937_64 rng(23);
+  std::vector<double> free_q;
+  for (int k = 0; k < 10000 && free_q.empty(); ++k) {
+    std::vector<double> q = dss_test::randomGroupState(*f.model, rng);
+    if (checker->check(q.data()) == dss::StateVerdict::kFree) free_q = q;
+  }
+  BOOST_REQUIRE(!free_q.empty());
+  const int a = f.model->groupActive()[2];
+  for (const bool batched : {false, true}) {
+    const dss::DiscreteMotionChecker motion(checker, batched);
+    BOOST_TEST(motion.clear(free_q.data(), free_q.data(), 1));
+    for (const auto& [bad, what] : badGroupValues(f.joint(a)))
+      for (const int segments : {1, 2, 9}) {
+        std::vector<double> q = free_q;
+        q[a] = bad;
+        const std::string at =
+            what + ", " + std::to_string(segments) + " segments" + (batched ? ", batched" : "");
+        BOOST_TEST(!motion.clear(free_q.data(), q.data(), segments), at);
+        BOOST_TEST(!motion.clear(q.data(), free_q.data(), segments), at << " (start)");
+        double last = -1.0;
+        BOOST_TEST(!motion.clear(q.data(), free_q.data(), segments, &last), at << " (start)");
+        BOOST_TEST(last == 0.0, at);
+      }
   }
 }
 

@@ -128,7 +128,8 @@ class DiscreteMotionChecker {
   /// `kind` order. Otherwise `last_valid_fraction` (optional; it makes the check run in order
   /// from the start) receives (j - 1) / segments for the first colliding state j, as OMPL's
   /// lastValid. A state outside the model's bounds or with a non-finite value counts as
-  /// colliding. segments < 1 counts as 1.
+  /// colliding; so does such a start (fraction 0), which is not checked otherwise. segments < 1
+  /// counts as 1.
   bool clear(const double* q0, const double* q1, int segments,
              double* last_valid_fraction = nullptr,
              MotionOrder kind = MotionOrder::kEndFirst) const;
