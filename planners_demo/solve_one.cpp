@@ -111,16 +111,27 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (!goal_valid)
     std::cerr << "dss_plan: " << files.name << ": warning: goal state invalid under "
               << checker->checker().name() << ": " << goal_why.withHint() << "\n";
+  // A problem whose start is invalid, or none of whose goal states is, has no solution: it is
+  // not planned (OMPL's tree planners would spend the whole time limit sampling for a valid goal
+  // state) and counts at the time limit in the summary, as a plan that ran out of time.
+  const auto* goal_states = ss.getGoal()->as<ob::GoalStates>();
+  bool some_goal_valid = goal_valid;
+  for (std::size_t g = 1; g < goal_states->getStateCount() && !some_goal_valid; ++g)
+    some_goal_valid = checker->isValid(goal_states->getState(g));
+  const bool plan = start_valid && some_goal_valid;
   const dss::CheckerCounters counters0 = checker->counters();
 
   // The time limit is checked by the planner itself at every iteration (a clock read). OMPL's
   // solve(seconds) would, for limits of 1 s and more, start a timer thread per solve, and its
   // start and join cost about 1 ms of wall time here: more than many of these plans take.
   const double cpu0 = threadCpuSeconds();
-  const ob::PlannerStatus status = ss.solve(ob::timedPlannerTerminationCondition(a.time));
+  const ob::PlannerStatus status =
+      plan ? ss.solve(ob::timedPlannerTerminationCondition(a.time))
+           : ob::PlannerStatus(start_valid ? ob::PlannerStatus::INVALID_GOAL
+                                           : ob::PlannerStatus::INVALID_START);
   const double cpu = threadCpuSeconds() - cpu0;
   const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
-  const double t = ss.getLastPlanComputationTime();
+  const double t = plan ? ss.getLastPlanComputationTime() : 0.0;
   const dss::CheckerCounters counters = checker->counters() - counters0;
   const auto mv = p.si->getMotionValidator();
   double length = 0.0;
@@ -183,6 +194,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   }
   if (!start_valid) j["start_invalid"] = true, j["start_invalid_why"] = start_why.text;
   if (!goal_valid) j["goal_invalid"] = true, j["goal_invalid_why"] = goal_why.text;
+  if (!plan) j["planned"] = false;
   std::cout << j.dump() << std::endl;
   if (readable) {
     std::cout << "\n"
@@ -195,7 +207,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
               << " us of planning per check), " << j["motion_checks"] << " motion checks\n";
   }
   if (!a.render.empty()) writeRender(a, lp, *checker, ss, files, status);
-  return {solved, t};
+  return {solved, plan ? t : a.time};
 }
 
 }  // namespace dss_plan

@@ -3,6 +3,7 @@
 // collision.
 #include <boost/test/unit_test.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -77,6 +78,13 @@ BOOST_AUTO_TEST_CASE(dss_plan_names_the_pairs_of_a_goal_in_collision) {
   BOOST_TEST(r.exit_code == 3, r.err);  // not solved
   BOOST_TEST(r.out.find("\"goal_invalid\":true") != std::string::npos, r.out);
   BOOST_TEST(r.out.find("\"goal_invalid_why\":\"link body collision[") != std::string::npos, r.out);
+  // With no valid goal state there is nothing to plan: the planner is not run (it would spend
+  // the time limit sampling for a valid goal) and no state is checked.
+  const nlohmann::json j = nlohmann::json::parse(dss_test::outputLines(r.out).at(0));
+  BOOST_TEST(j["planned"] == false);
+  BOOST_TEST(j["status"] == "Invalid goal");
+  BOOST_TEST(j["validity_checks"] == 0);
+  BOOST_TEST(j["planning_time_s"] == 0.0);
   BOOST_TEST(r.err.find("goal state invalid under dss: link body collision[") != std::string::npos,
              r.err);
   BOOST_TEST(r.err.find("with scene object 'middle_wall/") != std::string::npos, r.err);
