@@ -15,7 +15,7 @@ namespace ob = ompl::base;
 namespace {
 // A per-thread state of `space` for interpolated states: kept until the thread ends or asks for
 // another space's (no allocation per motion once warm).
-ob::State* scratchState(const ob::StateSpacePtr& space) {
+ob::State* scratchState(const ob::StateSpacePtr& space, int which = 0) {
   struct Slot {
     ob::StateSpacePtr space;
     ob::State* state = nullptr;
@@ -23,13 +23,23 @@ ob::State* scratchState(const ob::StateSpacePtr& space) {
       if (state) space->freeState(state);
     }
   };
-  thread_local Slot slot;
+  thread_local Slot slots[3];
+  Slot& slot = slots[which];
   if (slot.space != space) {
     if (slot.state) slot.space->freeState(slot.state);
     slot.space = space;
     slot.state = space->allocState();
   }
   return slot.state;
+}
+// The joint values of the ends of the motion this thread checks (usableEnds reads them, the
+// direct path interpolates between them).
+struct Ends {
+  std::vector<double> q0, q1;
+};
+Ends& endValues() {
+  thread_local Ends ends;
+  return ends;
 }
 }  // namespace
 
@@ -44,27 +54,47 @@ bool DiscreteMotionValidator::directPath(const ValidityChecker* vc) const {
   return map_->plain() && vc && &vc->checker().model() == &motion_->checker().model();
 }
 
-bool DiscreteMotionValidator::nonFinite(const ob::State* s1, const ob::State* s2) const {
-  if (map_->finiteValues(s1) && map_->finiteValues(s2)) return false;
+bool DiscreteMotionValidator::usableEnds(const ob::State*& s1, const ob::State*& s2) const {
+  Ends& ends = endValues();
+  const std::size_t nq = map_->robot().numActiveJoints();
+  if (ends.q0.size() < nq) ends.q0.resize(nq), ends.q1.resize(nq);
+  if (map_->toJoints(s1, ends.q0.data()) && map_->toJoints(s2, ends.q1.data())) {
+    const ob::StateSpacePtr& space = si_->getStateSpace();
+    // A plain space's bounds are the ones toJoints held the values to.
+    if (map_->plain() || (space->satisfiesBounds(s1) && space->satisfiesBounds(s2))) return true;
+    // Valid input outside the space's own bounds: an angle beyond [-pi, pi] (OMPL's SO(2)
+    // distance asserts on it), a quaternion off unit norm. Wrapped copies take their place,
+    // the same joint positions.
+    ob::State* w1 = scratchState(space, 1);
+    ob::State* w2 = scratchState(space, 2);
+    space->copyState(w1, s1);
+    space->copyState(w2, s2);
+    space->enforceBounds(w1);
+    space->enforceBounds(w2);
+    s1 = w1, s2 = w2;
+    return true;
+  }
   KindCounts& c = kind_counts_[0];
   c.motions.fetch_add(1, std::memory_order_relaxed);
   c.colliding.fetch_add(1, std::memory_order_relaxed);
-  return true;
+  return false;
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  // NaN or infinity at an end: colliding, before the space measures the motion (its segment
-  // count would be undefined, and an SO(2) part asserts on such a state).
-  if (nonFinite(s1, s2)) return false;
+  // An end that is not valid input (NaN, an infinity, a bounded value beyond its limits) makes
+  // the motion colliding before the space measures it: its segment count would be undefined or
+  // absurd.
+  if (!usableEnds(s1, s2)) return false;
   const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
   return check(s1, s2, n, nullptr);
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                           std::pair<ob::State*, double>& lastValid) const {
-  if (nonFinite(s1, s2)) {
+  const ob::State* start = s1;
+  if (!usableEnds(s1, s2)) {
     lastValid.second = 0.0;
-    if (lastValid.first) si_->getStateSpace()->copyState(lastValid.first, s1);
+    if (lastValid.first) si_->getStateSpace()->copyState(lastValid.first, start);
     return false;
   }
   const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
@@ -86,13 +116,11 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
   if (directPath(vc)) {
     const StateChecker& checker = vc->checker();
     const std::size_t nq = checker.model().robot().numActiveJoints();
-    thread_local std::vector<double> q0, q1, q;
-    if (q.size() < nq) q0.resize(nq), q1.resize(nq), q.resize(nq);
-    // The raw values (toJoints' bounds verdict does not matter here: the end state goes through
-    // the validity checker, interior states through the checker's own bounds).
-    map_->toJoints(s1, q0.data());
-    map_->toJoints(s2, q1.data());
-    const double *a = q0.data(), *b = q1.data();
+    thread_local std::vector<double> q;
+    if (q.size() < nq) q.resize(nq);
+    // The ends' joint values, as usableEnds() has just read them.
+    const Ends& ends = endValues();
+    const double *a = ends.q0.data(), *b = ends.q1.data();
     double* const qs = q.data();
     auto free = [&](int j) {
       ++exact;

@@ -11,6 +11,7 @@
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
 
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
@@ -501,11 +502,14 @@ BOOST_AUTO_TEST_CASE(same_verdicts_and_last_valid_as_ompl_on_mbm_problems, DSS_N
 
 BOOST_AUTO_TEST_SUITE_END()
 
-// NaN and Inf are never free: a motion with a non-finite value at either end collides under
-// the discrete, vector and continuous validators, with and without lastValid (which then
-// says no state of the motion is valid), on a plain space and on one with an SO(2) part.
+// NaN and Inf are never free, nor a bounded value beyond its limits (1e300): a motion with one
+// at either end collides under the discrete, vector and continuous validators, with and
+// without lastValid (which then says no state of the motion is valid), on a plain space and on
+// one with an SO(2) part. An SO(2) angle written beyond [-pi, pi] (OMPL's SO(2) distance
+// asserts on it) is the same angle within it: the same verdicts.
 BOOST_AUTO_TEST_SUITE(non_finite_ends)
-BOOST_AUTO_TEST_CASE(a_motion_with_nan_or_inf_at_an_end_collides) {
+BOOST_AUTO_TEST_CASE(a_motion_with_nan_inf_or_out_of_bounds_at_an_end_collides) {
+  int bad_states = 0, wrapped_motions = 0;
   for (Case c : {ourCase("dss_arm7", "shelf"), turnerCase()}) {
     const ob::SpaceInformationPtr& si = c.p.si;
     const ob::StateSpacePtr& space = si->getStateSpace();
@@ -519,27 +523,60 @@ BOOST_AUTO_TEST_CASE(a_motion_with_nan_or_inf_at_an_end_collides) {
     do randomState(c, rng, free_state.get());
     while (!si->isValid(free_state.get()) && ++tries < 1000);
     BOOST_REQUIRE(si->isValid(free_state.get()));
+    auto expectColliding = [&](const std::string& what) {
+      ++bad_states;
+      for (std::size_t k = 0; k < validators.size(); ++k) {
+        const ob::MotionValidator& mv = *validators[k];
+        const std::string at = c.name + " validator " + std::to_string(k) + ": " + what;
+        BOOST_TEST(!mv.checkMotion(free_state.get(), bad.get()), at << " (end)");
+        BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get()), at << " (start)");
+        std::pair<ob::State*, double> lv{last.get(), -1.0};
+        BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get(), lv), at << " (start, lastValid)");
+        BOOST_TEST(lv.second == 0.0, at);
+      }
+    };
     const dss::GroupStateMap& map = *c.p.map;
-    std::vector<double> g(map.dimension());
+    std::vector<double> g(map.dimension()), back(map.dimension());
     for (const double v :
          {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-          -std::numeric_limits<double>::infinity()})
+          -std::numeric_limits<double>::infinity(), 1e300})
       for (std::size_t i = 0; i < g.size(); ++i) {
         map.toGroupValues(free_state.get(), g.data());
         g[i] = v;
         map.fromGroupValues(g.data(), bad.get());
-        for (std::size_t k = 0; k < validators.size(); ++k) {
-          const ob::MotionValidator& mv = *validators[k];
-          const std::string what = c.name + " validator " + std::to_string(k) + " value " +
-                                   std::to_string(i) + " = " + std::to_string(v);
-          BOOST_TEST(!mv.checkMotion(free_state.get(), bad.get()), what << " (end)");
-          BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get()), what << " (start)");
-          std::pair<ob::State*, double> lv{last.get(), -1.0};
-          BOOST_TEST(!mv.checkMotion(bad.get(), free_state.get(), lv),
-                     what << " (start, lastValid)");
-          BOOST_TEST(lv.second == 0.0, what);
-        }
+        // (The map wraps a finite angle of SO(2) into its bounds: a valid angle.)
+        map.toGroupValues(bad.get(), back.data());
+        if (std::isfinite(v) && back[i] != v) continue;
+        expectColliding("value " + std::to_string(i) + " = " + std::to_string(v));
       }
+    // An angle of SO(2) outside [-pi, pi], written into the state (OMPL's SO(2) distance
+    // asserts on it): the same angle within it, the same verdicts as the wrapped state's.
+    if (const auto* cs = dynamic_cast<const ob::CompoundStateSpace*>(space.get()))
+      for (unsigned k = 0; k < cs->getSubspaceCount(); ++k)
+        if (cs->getSubspace(k)->getType() == ob::STATE_SPACE_SO2) {
+          ob::ScopedState<> wrapped(space), far(space);
+          for (int m = 0; m < 200; ++m) {
+            randomState(c, rng, far.get());
+            space->copyState(bad.get(), far.get());
+            double& angle =
+                bad->as<ob::CompoundState>()->as<ob::SO2StateSpace::StateType>(k)->value;
+            angle += angle < 0 ? 2.0 * M_PI : -2.0 * M_PI;
+            space->copyState(wrapped.get(), bad.get());
+            space->enforceBounds(wrapped.get());
+            BOOST_REQUIRE(!space->satisfiesBounds(bad.get()));
+            for (std::size_t v = 0; v < validators.size(); ++v) {
+              const ob::MotionValidator& mv = *validators[v];
+              BOOST_TEST(mv.checkMotion(free_state.get(), bad.get()) ==
+                             mv.checkMotion(free_state.get(), wrapped.get()),
+                         c.name << " validator " << v << " motion " << m);
+            }
+            ++wrapped_motions;
+          }
+        }
   }
+  // Four values into each of the arm's 7 and the turner's 2, less 1e300 into the turner's SO(2)
+  // angle (wrapped by the map).
+  BOOST_TEST(bad_states == 4 * 7 + 4 * 2 - 1);
+  BOOST_TEST(wrapped_motions == 200);
 }
 BOOST_AUTO_TEST_SUITE_END()

@@ -14,11 +14,12 @@
 // value by value) and checked by that checker's state checker without an OMPL state or a
 // virtual call; otherwise the space interpolates them and the space information's validity
 // checker decides them. The end state always goes through the space information's validity
-// checker, as in OMPL. A motion with NaN or an infinity at either end is colliding (OMPL assumes
-// the start valid; such a start is not). Motion counts are atomic (OMPL's own counters are not safe
-// to increment from several threads), also per kind of motion (towards a new state, or from a state
-// just found free towards a held one: MotionOrder), with the states each kind had checked one by
-// one and those batches proved free: where a plan's checking goes.
+// checker, as in OMPL. A motion with NaN, an infinity or a bounded value beyond its limits at
+// either end is colliding (OMPL assumes the start valid; such a start is not); an angle beyond
+// [-pi, pi] is taken as the same angle within it. Motion counts are atomic (OMPL's own counters are
+// not safe to increment from several threads), also per kind of motion (towards a new state, or
+// from a state just found free towards a held one: MotionOrder), with the states each kind had
+// checked one by one and those batches proved free: where a plan's checking goes.
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
@@ -64,8 +65,11 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
   MotionCounts counts(MotionOrder kind) const;
 
  private:
-  /// True (the motion counted as colliding) when s1 or s2 holds NaN or an infinity.
-  bool nonFinite(const ompl::base::State* s1, const ompl::base::State* s2) const;
+  /// False (the motion counted as colliding) when s1 or s2 is not valid input (NaN, an
+  /// infinity, a bounded value beyond its limits). Otherwise true, with s1 and s2 replaced by
+  /// per-thread copies brought within the space's bounds where they lie outside them (an angle
+  /// beyond [-pi, pi]: the same joint positions).
+  bool usableEnds(const ompl::base::State*& s1, const ompl::base::State*& s2) const;
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
              int* first_colliding) const;
