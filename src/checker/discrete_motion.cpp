@@ -52,6 +52,80 @@ const int* cachedCheckOrder(int n, MotionOrder kind) {
   return order.data();
 }
 
+CheckOrderCursor::CheckOrderCursor(int n, MotionOrder kind) : n_(std::max(0, n)), kind_(kind) {
+  constexpr int kCached = 256;
+  if (n_ == 0) {
+    phase_ = 2;
+    return;
+  }
+  if (n_ <= kCached) {
+    cached_ = cachedCheckOrder(n_, kind);
+    return;
+  }
+  // As discreteCheckOrder: the states three quarters and nine tenths of the way (kEndLast).
+  if (kind == MotionOrder::kEndLast) {
+    auto at = [this](double f) {
+      return std::min(n_, std::max(1, static_cast<int>(f * n_ + 0.5)));
+    };
+    for (const int j : {at(0.75), at(0.9)})
+      if (j != n_ && (num_first_ == 0 || first_[0] != j)) first_[num_first_++] = j;
+  }
+}
+
+int CheckOrderCursor::nextOnLevel() {
+  // The runs of a level, left to right, are the paths of depth_ turns from the top run
+  // [1, n - 1] (each run's middle, then its left and right halves, as discreteCheckOrder's
+  // breadth-first queue takes them); a path whose run empties is skipped with every path
+  // through it.
+  const long long paths = 1LL << depth_;
+  while (path_ < paths) {
+    int lo = 1, hi = n_ - 1;
+    int bit = depth_ - 1;
+    for (; bit >= 0 && lo <= hi; --bit) {
+      const int mid = lo + (hi - lo) / 2;
+      if ((path_ >> bit) & 1)
+        lo = mid + 1;
+      else
+        hi = mid - 1;
+    }
+    if (lo > hi) {  // emptied above the level: skip every path below that turn
+      path_ = (path_ | ((1LL << (bit + 1)) - 1)) + 1;
+      continue;
+    }
+    ++path_;
+    return lo + (hi - lo) / 2;
+  }
+  return 0;
+}
+
+int CheckOrderCursor::nextGenerated() {
+  if (phase_ == 0) {
+    if (kind_ == MotionOrder::kEndFirst && given_ == 0) return ++given_, n_;
+    const int k = given_ - (kind_ == MotionOrder::kEndFirst ? 1 : 0);
+    if (k < num_first_) return ++given_, first_[k];
+    phase_ = 1;
+  }
+  while (phase_ == 1) {
+    const int j = nextOnLevel();
+    if (j != 0) {
+      level_had_state_ = true;
+      if (j == first_[0] || j == first_[1]) continue;
+      return ++given_, j;
+    }
+    if (!level_had_state_ && depth_ > 0) {
+      phase_ = 2;
+      break;
+    }
+    if (depth_ >= 62) {
+      phase_ = 2;
+      break;
+    }
+    ++depth_, path_ = 0, level_had_state_ = false;
+  }
+  if (kind_ == MotionOrder::kEndLast && given_ < n_) return ++given_, n_;
+  return 0;
+}
+
 unsigned freeInterpolated(const StateChecker& checker, const double* a, const double* b, int n,
                           const int* js, int m) {
   constexpr int kLanes = StateChecker::kBatchLanes;

@@ -191,6 +191,47 @@ BOOST_AUTO_TEST_CASE(each_order_takes_every_state_once) {
   BOOST_TEST(order == (std::vector<int>{3, 2, 1, 4}));
 }
 
+// The cursor the checks walk gives discreteCheckOrder's order, from the cache up to 256
+// segments and generated level by level beyond; a motion of 2^30 segments starts at once (its
+// order is not stored: it would take 4 GiB) and its end, then its middle, come first.
+BOOST_AUTO_TEST_CASE(the_cursor_gives_the_order_without_storing_it) {
+  using dss::MotionOrder;
+  std::vector<int> order;
+  for (MotionOrder kind : {MotionOrder::kEndFirst, MotionOrder::kEndLast}) {
+    std::vector<int> sizes;
+    for (int n = 0; n <= 1100; ++n) sizes.push_back(n);
+    for (int n : {2047, 2048, 2049, 4095, 4096, 10007, 65536, 100003}) sizes.push_back(n);
+    for (const int n : sizes) {
+      dss::discreteCheckOrder(n, kind, order);
+      dss::CheckOrderCursor cursor(n, kind);
+      std::vector<int> walked;
+      for (int j = cursor.next(); j != 0 && walked.size() <= order.size(); j = cursor.next())
+        walked.push_back(j);
+      BOOST_REQUIRE_MESSAGE(walked == order,
+                            "n " << n << (kind == MotionOrder::kEndLast ? " end last" : ""));
+      BOOST_TEST(cursor.next() == 0);
+    }
+    const int huge = 1 << 30;
+    dss::CheckOrderCursor cursor(huge, kind);
+    std::vector<int> head;
+    for (int k = 0; k < 5; ++k) head.push_back(cursor.next());
+    if (kind == MotionOrder::kEndFirst)
+      BOOST_TEST(head == (std::vector<int>{huge, huge / 2, huge / 4, 3 * (huge / 4), huge / 8}));
+    else
+      BOOST_TEST(head ==
+                 (std::vector<int>{int(std::lround(0.75 * huge)), int(std::lround(0.9 * huge)),
+                                   huge / 2, huge / 4, huge / 8}));
+  }
+  // The checks themselves: a motion of 2^30 segments whose end collides ends at its first
+  // state, one whose start is the only free state at its second (the middle).
+  int asked = 0;
+  BOOST_TEST(!dss::motionStatesFree(1 << 30, [&](int j) { return ++asked, j != (1 << 30); }));
+  BOOST_TEST(asked == 1);
+  asked = 0;
+  BOOST_TEST(!dss::motionStatesFree(1 << 30, [&](int) { return ++asked == 1; }));
+  BOOST_TEST(asked == 2);
+}
+
 BOOST_AUTO_TEST_CASE(the_verdict_and_first_colliding_state_do_not_depend_on_the_order) {
   std::mt19937_64 rng(7);
   for (int trial = 0; trial < 2000; ++trial) {

@@ -37,6 +37,36 @@ void discreteCheckOrder(int n, MotionOrder kind, std::vector<int>& order);
 /// ones are ordered into per-thread scratch). Valid until the thread's next call.
 const int* cachedCheckOrder(int n, MotionOrder kind);
 
+/// The states of discreteCheckOrder(n, kind) one at a time: from the per-thread cache for
+/// motions of up to 256 segments, generated level by level of the bisection beyond, in memory
+/// that does not grow with n (a motion at a very fine resolution would otherwise need n
+/// integers before its first state is checked).
+class CheckOrderCursor {
+ public:
+  CheckOrderCursor(int n, MotionOrder kind);
+  /// The next state (1 .. n), 0 once every state has been given.
+  int next() {
+    if (cached_) return given_ < n_ ? cached_[given_++] : 0;
+    return nextGenerated();
+  }
+
+ private:
+  int nextGenerated();
+  /// The bisection's next state at or after path_ on level depth_, 0 when the level has none.
+  int nextOnLevel();
+
+  int n_;
+  MotionOrder kind_;
+  const int* cached_ = nullptr;
+  int given_ = 0;
+  int first_[2] = {0, 0};  ///< kEndLast: the states taken out of the bisection
+  int num_first_ = 0;
+  int phase_ = 0;  ///< 0: the states before the bisection, 1: the bisection, 2: done
+  int depth_ = 0;
+  long long path_ = 0;  ///< on level depth_, the runs' left (0) and right (1) turns from the top
+  bool level_had_state_ = false;
+};
+
 /// Whether the states 1 .. n of a motion are all free, by `free(j)` (true: state j is free).
 /// With `first_colliding` null, in discreteCheckOrder(n, kind) order; otherwise in order from
 /// state 1, and *first_colliding receives the first colliding state (n + 1 when none).
@@ -52,9 +82,9 @@ bool motionStatesFree(int n, Free&& free, int* first_colliding = nullptr,
     *first_colliding = n + 1;
     return true;
   }
-  const int* order = cachedCheckOrder(n, kind);
-  for (int k = 0; k < n; ++k)
-    if (!free(order[k])) return false;
+  CheckOrderCursor order(n, kind);
+  for (int j = order.next(); j != 0; j = order.next())
+    if (!free(j)) return false;
   return true;
 }
 
@@ -73,13 +103,13 @@ template <class Free, class Batch>
 bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colliding = nullptr,
                              MotionOrder kind = MotionOrder::kEndFirst) {
   int js[kMotionBatch];
-  // The states order(k) for k in [begin, end) except n, batch by batch (those a batch leaves,
-  // in batch order), n where it comes: the first colliding one in *at.
-  auto run = [&](auto&& order, int begin, int end, int* at) {
-    int k = begin;
-    while (k < end) {
-      int m = 0, stop = k;
-      while (stop < end && m < kMotionBatch && order(stop) != n) js[m++] = order(stop++);
+  // The states next() gives until it gives 0, batch by batch except n (those a batch leaves
+  // decided in batch order), n where it comes: the first colliding one in *at.
+  auto run = [&](auto&& next, int* at) {
+    int j = next();
+    while (j != 0) {
+      int m = 0;
+      while (j != 0 && j != n && m < kMotionBatch) js[m++] = j, j = next();
       if (m >= kMotionMinBatch) {
         const unsigned proven = batch(js, m);
         for (int i = 0; i < m; ++i)
@@ -88,25 +118,27 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
         for (int i = 0; i < m; ++i)
           if (!free(js[i])) return *at = js[i], false;
       }
-      k = stop;
-      if (k < end && order(k) == n) {
+      if (j == n) {
         if (!free(n)) return *at = n, false;
-        ++k;
+        j = next();
       }
     }
     return true;
   };
   int at = 0;
   if (first_colliding) {  // in order from state 1
-    const bool ok = run([](int k) { return k + 1; }, 0, n, &at);
+    int k = 0;
+    const bool ok = run([&k, n] { return k < n ? ++k : 0; }, &at);
     *first_colliding = ok ? n + 1 : at;
     return ok;
   }
-  const int* order = cachedCheckOrder(n, kind);
-  const int probes = n < kMotionProbes ? n : kMotionProbes;
-  for (int k = 0; k < probes; ++k)
-    if (!free(order[k])) return false;
-  return run([order](int k) { return order[k]; }, probes, n, &at);
+  CheckOrderCursor order(n, kind);
+  for (int k = 0; k < kMotionProbes; ++k) {
+    const int j = order.next();
+    if (j == 0) return true;
+    if (!free(j)) return false;
+  }
+  return run([&order] { return order.next(); }, &at);
 }
 
 /// A batch for motionStatesFreeBatched: states js[0 .. m) (m <= kMotionBatch) of the motion
