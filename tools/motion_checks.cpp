@@ -116,7 +116,8 @@ std::vector<Motion> randomMotions(const dss::Problem& p, long count, double leng
 }
 
 // Where the first colliding state of a motion the first validator refused lies, and what
-// collides there: the states the discrete validator checks, in order from the start.
+// collides there: the states the discrete validator checks, in order from the start (its
+// lastValid, OMPL's).
 std::string explain(const dss::Problem& p, const dss::ValidityChecker& vc,
                     const ob::MotionValidator& in_order, const Motion& m) {
   if (!m.finite) return "a state of the motion holds a value that is not finite";
@@ -204,10 +205,11 @@ void checkMotions(const dss::Problem& p, const std::vector<std::vector<double>>&
   }
 
   // The first validator's verdicts, and with --contacts where each refused motion collides.
-  const ob::DiscreteMotionValidator in_order(p.si);
+  const std::shared_ptr<dss::DiscreteMotionValidator> in_order =
+      dss::makeDiscreteMotionValidator(p, *vc);
   for (std::size_t i = 0; i < motions.size(); ++i) {
     std::cout << (valid[0][i] ? 1 : 0);
-    if (o.contacts && !valid[0][i]) std::cout << '\t' << explain(p, *vc, in_order, motions[i]);
+    if (o.contacts && !valid[0][i]) std::cout << '\t' << explain(p, *vc, *in_order, motions[i]);
     std::cout << "\n";
   }
   for (std::size_t k = 0; k < nv; ++k) {
