@@ -36,6 +36,7 @@ constexpr double kMaxPadding = 1e3;
 constexpr long long kMaxCount = 1000000000;
 constexpr long long kMaxSeed = 4294967295;  // OMPL seeds are 32-bit
 constexpr long long kMaxThreads = 1024;
+constexpr long long kMaxMotions = 10000000;  // --motions --random: two OMPL states each
 
 const char* kUsage =
     "usage: dss_check --robot R.urdf [--srdf S.srdf] [--scene FILE] [--group G]\n"
@@ -59,7 +60,8 @@ const char* kUsage =
     "  --motions: check motions instead of states, each listed motion validator on the one\n"
     "  --checker: the path from each row of --states to the next, or --random N motions (a\n"
     "  valid start towards a uniform state, cut to a length uniform up to --motion-length\n"
-    "  times the space's extent, in (0, 1], default 0.2); stdout: 1/0 per motion for the\n"
+    "  times the space's extent, in (0, 1], default 0.2; N <= 10^7); stdout: 1/0 per motion for "
+    "the\n"
     "  first validator (with --contacts, its first colliding state and pairs);\n"
     "  --resolution f in (0, 1]: OMPL's state validity checking resolution (0.01)\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
@@ -268,6 +270,9 @@ int run(int argc, char** argv) {
     if (checkers != "dss" &&
         std::find(validators.begin(), validators.end(), "continuous") != validators.end())
       cli.error("--motions: the continuous validator needs --checker dss, got '" + checkers + "'");
+    if (random_n > kMaxMotions)
+      cli.error("--motions: --random takes at most " + std::to_string(kMaxMotions) +
+                " motions (each holds two states), got " + std::to_string(random_n));
     if (resolution <= 0) cli.error("--resolution: expected a number in (0, 1]");
     if (motion_length <= 0) cli.error("--motion-length: expected a number in (0, 1]");
   }

@@ -166,6 +166,7 @@ BOOST_AUTO_TEST_CASE(paths_and_options_motions_cannot_take_are_refused) {
   usage({"--random", "5", "--motions", "discrete", "--resolution", "0"}, "--resolution");
   usage({"--random", "5", "--motions", "discrete", "--motion-length", "2"}, "--motion-length");
   usage({"--random", "5", "--resolution", "0.02"}, "apply to --motions only");
+  usage({"--random", "10000001", "--motions", "discrete"}, "--random takes at most 10000000");
 }
 
 BOOST_AUTO_TEST_SUITE_END()
