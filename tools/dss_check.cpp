@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -28,6 +27,7 @@
 #include "dss/scene/scene_loader.h"
 #include "mesh_cli.h"
 #include "motion_checks.h"
+#include "timing.h"
 
 namespace {
 
@@ -66,11 +66,7 @@ const char* kUsage =
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
     "robot meshes:\n";
 
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
+using dss::cli::threadCpuSeconds;
 
 nlohmann::json describe(const dss::Problem& p) {
   using nlohmann::json;
@@ -451,10 +447,7 @@ int run(int argc, char** argv) {
     std::vector<double> r;
     for (std::size_t i = 0; i < per_state[k].size() && i < per_state[0].size(); ++i)
       if (per_state[0][i] > 0.0) r.push_back(per_state[k][i] / per_state[0][i]);
-    std::sort(r.begin(), r.end());
-    if (!r.empty())
-      paired_ratio[k] =
-          r.size() % 2 ? r[r.size() / 2] : 0.5 * (r[r.size() / 2 - 1] + r[r.size() / 2]);
+    paired_ratio[k] = dss::cli::median(r);
   }
   for (std::size_t k = 0; k < nc; ++k) {
     const auto& checker = built[k];

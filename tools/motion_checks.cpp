@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -16,6 +15,7 @@
 
 #include "dss/checker/contacts.h"
 #include "dss/core/simd_path.h"
+#include "timing.h"
 
 namespace dss_check {
 namespace {
@@ -25,18 +25,8 @@ namespace ob = ompl::base;
 // Random motions: starts drawn until the checker finds one valid, at most this many times.
 constexpr int kMaxStartDraws = 100000;
 
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
+using dss::cli::median;
+using dss::cli::threadCpuSeconds;
 
 struct Motion {
   ob::ScopedState<> from, to;

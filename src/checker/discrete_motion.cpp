@@ -7,22 +7,34 @@
 
 namespace dss {
 
+namespace {
+// Motions of up to this many segments have their orders cached per thread.
+constexpr int kCachedSegments = 256;
+
+// kEndLast's states taken out of the bisection and checked first: those three quarters and
+// nine tenths of the way (rounded to the nearest state), each once, the end excluded. Their
+// count (0 to 2) is returned, the states in first[0 .. count) and 0 in the rest.
+int endLastLeaders(int n, int first[2]) {
+  auto at = [n](double f) { return std::min(n, std::max(1, static_cast<int>(f * n + 0.5))); };
+  int count = 0;
+  first[0] = first[1] = 0;
+  for (const int j : {at(0.75), at(0.9)})
+    if (j != n && (count == 0 || first[0] != j)) first[count++] = j;
+  return count;
+}
+}  // namespace
+
 void discreteCheckOrder(int n, MotionOrder kind, std::vector<int>& order) {
   order.clear();
   if (n < 1) return;
   order.reserve(std::size_t(n));
-  // The states taken out of the bisection: the end (first or last), and with kEndLast the
-  // states three quarters and nine tenths of the way (rounded to the nearest state).
-  auto at = [n](double f) { return std::min(n, std::max(1, static_cast<int>(f * n + 0.5))); };
+  // The states taken out of the bisection: the end (first or last), and with kEndLast its
+  // leaders.
   int first[2] = {0, 0};
-  if (kind == MotionOrder::kEndFirst) {
+  if (kind == MotionOrder::kEndFirst)
     order.push_back(n);
-  } else {
-    first[0] = at(0.75);
-    first[1] = at(0.9);
-    for (int j : first)
-      if (j != n && std::find(order.begin(), order.end(), j) == order.end()) order.push_back(j);
-  }
+  else
+    order.insert(order.end(), first, first + endLastLeaders(n, first));
   // The interior runs, breadth first: the middle of each run, then its two halves.
   thread_local std::vector<std::pair<int, int>> runs;
   runs.clear();
@@ -38,7 +50,7 @@ void discreteCheckOrder(int n, MotionOrder kind, std::vector<int>& order) {
 }
 
 const int* cachedCheckOrder(int n, MotionOrder kind) {
-  constexpr int kCached = 256;
+  constexpr int kCached = kCachedSegments;
   thread_local std::vector<std::vector<int>> cache[2] = {
       std::vector<std::vector<int>>(kCached + 1), std::vector<std::vector<int>>(kCached + 1)};
   thread_local std::vector<int> scratch;
@@ -53,23 +65,15 @@ const int* cachedCheckOrder(int n, MotionOrder kind) {
 }
 
 CheckOrderCursor::CheckOrderCursor(int n, MotionOrder kind) : n_(std::max(0, n)), kind_(kind) {
-  constexpr int kCached = 256;
   if (n_ == 0) {
     phase_ = 2;
     return;
   }
-  if (n_ <= kCached) {
+  if (n_ <= kCachedSegments) {
     cached_ = cachedCheckOrder(n_, kind);
     return;
   }
-  // As discreteCheckOrder: the states three quarters and nine tenths of the way (kEndLast).
-  if (kind == MotionOrder::kEndLast) {
-    auto at = [this](double f) {
-      return std::min(n_, std::max(1, static_cast<int>(f * n_ + 0.5)));
-    };
-    for (const int j : {at(0.75), at(0.9)})
-      if (j != n_ && (num_first_ == 0 || first_[0] != j)) first_[num_first_++] = j;
-  }
+  if (kind == MotionOrder::kEndLast) num_first_ = endLastLeaders(n_, first_);
 }
 
 int CheckOrderCursor::nextOnLevel() {
