@@ -1,8 +1,9 @@
 // dss_bench nearest: the nearest-neighbour query of a tree planner on a joint-value space, by
 // OMPL's default structure (GNAT through the planner's distance function, as RRTConnect uses
-// it) and by dss::VectorNearestNeighbors (the scan alone, on each instruction set, and with its
-// default linear limit), on the same random points and queries. Medians of interleaved
-// repetitions; every structure must return the same nearest point.
+// it), by dss::PointBlocks' scan of every point and by its k-d tree (dss::PointTree), each on
+// every instruction set, and by dss::VectorNearestNeighbors as planners get it, on the same
+// random points and queries. Medians of interleaved repetitions; every structure must return
+// the same nearest point.
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <algorithm>
@@ -102,53 +103,72 @@ int runNearest(int argc, char** argv) {
   };
   std::vector<Item*> queries = make(num_queries);
 
-  // The entries: OMPL's GNAT, the scan on each instruction set, the default (scan, then GNAT
-  // from its linear limit on).
-  std::vector<std::pair<std::string, dss::SimdPath>> scans;
-  for (auto p : {dss::SimdPath::kAvx2, dss::SimdPath::kSse2, dss::SimdPath::kScalar})
-    if (dss::simdPathAvailable(p)) scans.emplace_back(dss::simdPathName(p), p);
+  // The entries: OMPL's GNAT; PointBlocks' scan of every point and its k-d tree (PointTree),
+  // each on every instruction set the CPU has; VectorNearestNeighbors as planners get it.
+  struct Blocks {
+    std::string name;
+    dss::SimdPath path;
+    std::size_t tree_from;
+  };
+  std::vector<Blocks> kinds;
+  for (const char* kind : {"scan", "tree"})
+    for (auto p : {dss::SimdPath::kAvx2, dss::SimdPath::kSse2, dss::SimdPath::kScalar})
+      if (dss::simdPathAvailable(p))
+        kinds.push_back({std::string(kind) + "-" + dss::simdPathName(p), p,
+                         kind[0] == 's' ? std::size_t(-1) : std::size_t(0)});
   std::printf("dim %u, %zu queries, median of %d repetitions; us per query\n", dim, num_queries,
               reps);
   std::printf("%8s %10s", "points", "ompl-gnat");
-  for (const auto& s : scans) std::printf(" %10s", ("scan-" + s.first).c_str());
+  for (const auto& k : kinds) std::printf(" %11s", k.name.c_str());
   std::printf(" %10s %8s\n", "vector", "gnat/vec");
+  auto values = [](const Item* it) {
+    return it->state->as<ob::RealVectorStateSpace::StateType>()->values;
+  };
   for (const std::size_t n : sizes) {
     std::vector<Item*> points = make(n);
     ompl::NearestNeighborsGNATNoThreadSafety<Item*> gnat;
     gnat.setDistanceFunction(
         [&](Item* const& a, Item* const& b) { return space->distance(a->state, b->state); });
     gnat.add(points);
-    std::vector<std::unique_ptr<dss::VectorNearestNeighbors<Item*>>> entries;
-    for (const auto& s : scans) {
-      entries.push_back(std::make_unique<dss::VectorNearestNeighbors<Item*>>(dim, s.second));
-      entries.back()->setLinearLimit(std::size_t(-1));
+    std::vector<dss::PointBlocks> blocks;
+    for (const auto& k : kinds) {
+      blocks.emplace_back(dim, k.path, k.tree_from);
+      for (const Item* it : points) blocks.back().push(values(it));
     }
-    entries.push_back(std::make_unique<dss::VectorNearestNeighbors<Item*>>(dim));
-    for (auto& e : entries) e->add(points);
-    std::vector<std::vector<double>> times(entries.size() + 1);
+    dss::VectorNearestNeighbors<Item*> vec(dim);
+    vec.add(points);
+    std::vector<std::vector<double>> times(blocks.size() + 2);
     std::vector<Item*> expected(queries.size()), got(queries.size());
     using Clock = std::chrono::steady_clock;
+    auto check = [&]() {
+      if (got == expected) return true;
+      std::cerr << "dss_bench nearest: a structure found another nearest point than GNAT (" << n
+                << " points)\n";
+      return false;
+    };
     for (int r = 0; r < reps; ++r) {
       auto t0 = Clock::now();
       for (std::size_t q = 0; q < queries.size(); ++q) expected[q] = gnat.nearest(queries[q]);
       times[0].push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-      for (std::size_t e = 0; e < entries.size(); ++e) {
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
         t0 = Clock::now();
-        for (std::size_t q = 0; q < queries.size(); ++q) got[q] = entries[e]->nearest(queries[q]);
-        times[e + 1].push_back(
+        for (std::size_t q = 0; q < queries.size(); ++q)
+          got[q] = points[blocks[b].nearest(values(queries[q]))];
+        times[b + 1].push_back(
             std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-        if (got != expected) {
-          std::cerr << "dss_bench nearest: a structure found another nearest point than GNAT (" << n
-                    << " points)\n";
-          return 1;
-        }
+        if (!check()) return 1;
       }
+      t0 = Clock::now();
+      for (std::size_t q = 0; q < queries.size(); ++q) got[q] = vec.nearest(queries[q]);
+      times.back().push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+      if (!check()) return 1;
     }
     const double per = double(queries.size());
     std::printf("%8zu %10.3f", n, median(times[0]) / per);
-    for (std::size_t e = 0; e < entries.size(); ++e)
-      std::printf(" %10.3f", median(times[e + 1]) / per);
-    std::printf(" %8.2f\n", median(times[0]) / median(times.back()));
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      std::printf(" %11.3f", median(times[b + 1]) / per);
+    std::printf(" %10.3f %8.2f\n", median(times.back()) / per,
+                median(times[0]) / median(times.back()));
     release(points);
   }
   release(queries);

@@ -5,32 +5,16 @@
 #include <cmath>
 #include <cstring>
 
+// (Every function here that passes a 32-byte vector is inlined: see block_distances.h.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#include "block_distances.h"
+
 namespace dss {
 
 namespace {
 
-// Four doubles: one AVX register in a function compiled for AVX2, two SSE2 registers otherwise.
-// The scalar path works lane by lane. Every path forms each difference, square and sum alone
-// (no fused multiply-add), in the same order: the same distances to the bit.
-using Quad = double __attribute__((vector_size(32)));
-
-// (GCC notes that a 32-byte vector is passed differently with AVX; every function here that
-// passes one is inlined, and the AVX2 ones take and return only pointers, sizes and doubles. GCC
-// reports the note at the end of the file, so it is silenced for the whole file.)
-#pragma GCC diagnostic ignored "-Wpsabi"
-// The squared distances of one block to q, summed from the first value (0 + d0^2 is d0^2
-// exactly, as OMPL's sum from 0.0).
-__attribute__((always_inline)) inline Quad blockQuad(const double* block, const double* q,
-                                                     unsigned dim) {
-  Quad acc = {0.0, 0.0, 0.0, 0.0};
-  for (unsigned d = 0; d < dim; ++d) {
-    Quad v;
-    std::memcpy(&v, block + 4 * d, sizeof v);
-    const Quad diff = v - q[d];
-    acc = acc + diff * diff;
-  }
-  return acc;
-}
+using detail::blockQuad;
+using detail::Quad;
 
 __attribute__((always_inline)) inline std::size_t nearestQuad(const double* data,
                                                               std::size_t blocks, unsigned dim,
@@ -80,14 +64,7 @@ void distancesSse2(const double* data, std::size_t blocks, unsigned dim, const d
 void distancesScalar(const double* data, std::size_t blocks, unsigned dim, const double* q,
                      double* out) {
   for (std::size_t b = 0; b < blocks; ++b, data += std::size_t(dim) * 4)
-    for (int l = 0; l < 4; ++l) {
-      double acc = 0.0;
-      for (unsigned d = 0; d < dim; ++d) {
-        const double diff = data[4 * d + l] - q[d];
-        acc += diff * diff;
-      }
-      out[4 * b + l] = acc;
-    }
+    detail::blockScalar(data, q, dim, out + 4 * b);
 }
 std::size_t nearestScalar(const double* data, std::size_t blocks, unsigned dim, const double* q,
                           double& best) {
@@ -106,10 +83,13 @@ std::size_t nearestScalar(const double* data, std::size_t blocks, unsigned dim, 
 
 }  // namespace
 
-PointBlocks::PointBlocks(unsigned dimension) : dim_(dimension), path_(activeSimdPath()) {}
+PointBlocks::PointBlocks(unsigned dimension) : PointBlocks(dimension, activeSimdPath()) {}
 
-PointBlocks::PointBlocks(unsigned dimension, SimdPath path)
-    : dim_(dimension), path_(simdPathAvailable(path) ? path : bestSimdPath()) {}
+PointBlocks::PointBlocks(unsigned dimension, SimdPath path, std::size_t tree_from)
+    : dim_(dimension),
+      path_(simdPathAvailable(path) ? path : bestSimdPath()),
+      tree_from_(tree_from),
+      tree_(dimension, path_) {}
 
 void PointBlocks::push(const double* v) {
   if (n_ % 4 == 0)
@@ -117,10 +97,21 @@ void PointBlocks::push(const double* v) {
   double* p = place(n_);
   for (unsigned d = 0; d < dim_; ++d) p[4 * d] = v[d];
   ++n_;
+  if (tree_on_) {
+    tree_.insert(n_ - 1, v);
+  } else if (n_ >= tree_from_) {
+    std::vector<double> w(dim_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      get(i, w.data());
+      tree_.insert(i, w.data());
+    }
+    tree_on_ = true;
+  }
 }
 
 void PointBlocks::swapRemove(std::size_t i) {
   const std::size_t last = n_ - 1;
+  if (tree_on_) tree_.swapRemove(i, last);
   double* to = place(i);
   double* from = place(last);
   for (unsigned d = 0; d < dim_; ++d) {
@@ -138,6 +129,10 @@ void PointBlocks::get(std::size_t i, double* v) const {
 
 std::size_t PointBlocks::nearest(const double* q) const {
   if (n_ == 0) return kNone;
+  if (tree_on_) {
+    const std::size_t i = tree_.nearest(q);
+    return i == kNone ? 0 : i;
+  }
   const std::size_t blocks = (n_ + 3) / 4;
   double best = std::numeric_limits<double>::infinity();
   std::size_t i = kNone;

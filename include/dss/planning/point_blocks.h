@@ -3,7 +3,9 @@
 // distance of a point to a query is summed value by value from the first, as OMPL's
 // RealVectorStateSpace::distance sums it (whose square root is the distance), so every point
 // gets the distance OMPL gives it, on every instruction set (dss/core/simd_path.h). The unused
-// places of the last block hold NaN, which is never nearer than anything.
+// places of the last block hold NaN, which is never nearer than anything. From kTreeFrom points
+// on, nearest() asks a PointTree over the same points (point_tree.h), which finds the same point
+// without a scan of every one.
 #pragma once
 
 #include <cstddef>
@@ -12,18 +14,22 @@
 #include <vector>
 
 #include "dss/core/simd_path.h"
+#include "dss/planning/point_tree.h"
 
 namespace dss {
 
 class PointBlocks {
  public:
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  /// The size from which nearest() asks the tree by default (below it a scan costs no more).
+  static constexpr std::size_t kTreeFrom = 512;
   /// (squared distance, index) of a point found by a query.
   using Found = std::pair<double, std::size_t>;
 
-  /// Scans on activeSimdPath(), or on `path` (the best available when the CPU lacks it).
+  /// Scans on activeSimdPath(), or on `path` (the best available when the CPU lacks it);
+  /// nearest() asks the tree from `tree_from` points on (SIZE_MAX: never).
   explicit PointBlocks(unsigned dimension);
-  PointBlocks(unsigned dimension, SimdPath path);
+  PointBlocks(unsigned dimension, SimdPath path, std::size_t tree_from = kTreeFrom);
 
   unsigned dimension() const { return dim_; }
   std::size_t size() const { return n_; }
@@ -31,6 +37,8 @@ class PointBlocks {
   void clear() {
     data_.clear();
     n_ = 0;
+    tree_.clear();
+    tree_on_ = false;
   }
   /// Appends a point (dimension() values): its index is size() before the call.
   void push(const double* v);
@@ -59,6 +67,9 @@ class PointBlocks {
   SimdPath path_;
   std::size_t n_ = 0;
   std::vector<double> data_;  // block b, value d, lane l at (b * dim_ + d) * 4 + l
+  std::size_t tree_from_;
+  PointTree tree_;  // every point, from tree_from_ points on
+  bool tree_on_ = false;
 };
 
 }  // namespace dss

@@ -1,9 +1,10 @@
 // Nearest neighbours for tree planners on a real vector space: OMPL's NearestNeighbors
 // interface over the states' values, kept side by side in memory and scanned four points at a
-// time (PointBlocks), instead of OMPL's default metric tree (GNAT), which reaches every state
-// through the planner's distance function and two pointers. From linearLimit() points on (a
-// scan costs about what the tree's search does there), queries go to a GNAT built over the
-// same points with the same distance.
+// time (PointBlocks; the nearest state from PointBlocks::kTreeFrom states on by a k-d tree of
+// buckets over the same values, point_tree.h), instead of OMPL's default metric tree (GNAT),
+// which reaches every state through the planner's distance function and two pointers. Queries
+// can be handed to a GNAT built over the same points with the same distance from a given size
+// on (setLinearLimit; never by default).
 //
 // The distance is OMPL's RealVectorStateSpace::distance, with the same sums in the same order:
 // a planner sees the same nearest states as with its default structure, up to exact ties, and
@@ -28,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -46,8 +48,9 @@ unsigned& pendingNearestDimension();
 template <class T>
 class VectorNearestNeighbors : public ompl::NearestNeighbors<T> {
  public:
-  /// The size from which queries go to the GNAT.
-  static constexpr std::size_t kDefaultLinearLimit = std::size_t(1) << 14;
+  /// The size from which queries go to the GNAT: never (the k-d tree's search beats GNAT's at
+  /// every size measured, docs/performance.md#the-nearest-neighbour-search).
+  static constexpr std::size_t kDefaultLinearLimit = std::numeric_limits<std::size_t>::max();
 
   /// Throws std::logic_error outside useVectorNearestNeighbors (the dimension is unknown).
   VectorNearestNeighbors() : VectorNearestNeighbors(detail::pendingNearestDimension()) {}
