@@ -171,6 +171,7 @@ const double* PointBlocks::allDistances(const double* q) const {
 void PointBlocks::nearestK(const double* q, std::size_t k, std::vector<Found>& out) const {
   out.clear();
   if (k == 0 || n_ == 0) return;
+  if (tree_on_) return tree_.nearestK(q, k, out);
   const double* dist = allDistances(q);
   // A max-heap of the k nearest so far; (distance, index) pairs order ties by index.
   for (std::size_t i = 0; i < n_; ++i) {
@@ -190,6 +191,7 @@ void PointBlocks::nearestK(const double* q, std::size_t k, std::vector<Found>& o
 void PointBlocks::withinRadius(const double* q, double radius, std::vector<Found>& out) const {
   out.clear();
   if (n_ == 0) return;
+  if (tree_on_) return tree_.withinRadius(q, radius, out);
   const double* dist = allDistances(q);
   for (std::size_t i = 0; i < n_; ++i)
     if (std::sqrt(dist[i]) <= radius) out.emplace_back(dist[i], i);

@@ -267,14 +267,55 @@ void PointTree::rebuild() {
   rebuild_depth_ = depth_;
 }
 
-namespace {
-// One candidate: nearer, or as near with a lower index (best_i kNone: nothing found yet, best
-// infinite, and an infinite distance is never taken).
-__attribute__((always_inline)) inline void consider(double d, std::size_t i, double& best,
-                                                    std::size_t& best_i) {
-  if (d < best || (d == best && best_i != PointTree::kNone && i < best_i)) best = d, best_i = i;
-}
-}  // namespace
+// What a search collects. prune(bound): no point at that squared distance or farther can be
+// collected; point(d, i): point i at squared distance d (NaN possible); kFilter: blocks whose
+// four distances all exceed best() hold nothing to collect (a NaN exceeds nothing and is
+// passed over).
+struct PointTree::Nearest {
+  static constexpr bool kFilter = true;
+  double best = kInf;
+  std::size_t best_i = PointTree::kNone;
+  double filter() const { return best; }
+  bool prune(double bound) const { return bound > best; }
+  // Nearer, or as near with a lower index (nothing found yet: best infinite, and an infinite
+  // distance is never taken).
+  void point(double d, std::size_t i) {
+    if (d < best || (d == best && best_i != PointTree::kNone && i < best_i)) best = d, best_i = i;
+  }
+};
+
+// The k least (distance, index) pairs, a NaN distance as infinite: a max-heap in `out`.
+struct PointTree::NearestK {
+  static constexpr bool kFilter = false;
+  std::size_t k;
+  std::vector<Found>& out;
+  double filter() const { return kInf; }
+  bool prune(double bound) const { return out.size() == k && bound > out.front().first; }
+  void point(double d, std::size_t i) {
+    const Found e{std::isnan(d) ? kInf : d, i};
+    if (out.size() < k) {
+      out.push_back(e);
+      std::push_heap(out.begin(), out.end());
+    } else if (e < out.front()) {
+      std::pop_heap(out.begin(), out.end());
+      out.back() = e;
+      std::push_heap(out.begin(), out.end());
+    }
+  }
+};
+
+// The points whose distance (the square root, as OMPL compares it) is at most the radius. The
+// square root is monotone and correctly rounded, so a box beyond the radius holds none.
+struct PointTree::WithinRadius {
+  static constexpr bool kFilter = false;
+  double radius;
+  std::vector<Found>& out;
+  double filter() const { return kInf; }
+  bool prune(double bound) const { return std::sqrt(bound) > radius; }
+  void point(double d, std::size_t i) {
+    if (std::sqrt(d) <= radius) out.emplace_back(d, i);
+  }
+};
 
 // The squared distance from q to a node's box, summed value by value from the first as a
 // point's distance is: for a point in the box each term is at most the point's own (the
@@ -295,32 +336,32 @@ __attribute__((always_inline)) inline double PointTree::boxBound(int node, const
   return s;
 }
 
-template <bool kQuad>
+template <bool kQuad, class Visitor>
 __attribute__((always_inline)) inline void PointTree::scanBucket(const Bucket& b, const double* q,
-                                                                 double& best,
-                                                                 std::size_t& best_i) const {
+                                                                 Visitor& v) const {
   const std::size_t blocks = (b.count + 3) / 4;
   const double* data = b.data.data();
   for (std::size_t k = 0; k < blocks; ++k, data += std::size_t(dim_) * 4) {
     const std::size_t* index = b.index.data() + 4 * k;
+    const int lanes = static_cast<int>(std::min<std::size_t>(4, b.count - 4 * k));
     if constexpr (kQuad) {
       const detail::Quad dist = detail::blockQuad(data, q, dim_);
-      const auto near = dist <= best;  // false for NaN
-      if (!(near[0] | near[1] | near[2] | near[3])) continue;
-      for (int l = 0; l < 4; ++l) consider(dist[l], index[l], best, best_i);
+      if constexpr (Visitor::kFilter) {
+        const auto near = dist <= v.filter();  // false for NaN
+        if (!(near[0] | near[1] | near[2] | near[3])) continue;
+      }
+      for (int l = 0; l < lanes; ++l) v.point(dist[l], index[l]);
     } else {
       double dist[4];
       detail::blockScalar(data, q, dim_, dist);
-      for (int l = 0; l < 4; ++l) consider(dist[l], index[l], best, best_i);
+      for (int l = 0; l < lanes; ++l) v.point(dist[l], index[l]);
     }
   }
 }
 
-template <bool kQuad>
-__attribute__((always_inline)) inline std::size_t PointTree::search(const double* q) const {
-  if (size_ == 0 || nodes_.empty()) return kNone;
-  double best = kInf;
-  std::size_t best_i = kNone;
+template <bool kQuad, class Visitor>
+__attribute__((always_inline)) inline void PointTree::search(const double* q, Visitor& v) const {
+  if (size_ == 0 || nodes_.empty()) return;
   struct Entry {
     int node;
     double bound;
@@ -331,10 +372,10 @@ __attribute__((always_inline)) inline std::size_t PointTree::search(const double
   while (!stack.empty()) {
     const Entry e = stack.back();
     stack.pop_back();
-    if (e.bound > best) continue;
+    if (v.prune(e.bound)) continue;
     const Node& node = nodes_[std::size_t(e.node)];
     if (node.dim < 0) {
-      scanBucket<kQuad>(buckets_[std::size_t(node.bucket)], q, best, best_i);
+      scanBucket<kQuad>(buckets_[std::size_t(node.bucket)], q, v);
       continue;
     }
     const int c0 = node.child[0], c1 = node.child[1];
@@ -343,28 +384,53 @@ __attribute__((always_inline)) inline std::size_t PointTree::search(const double
     const bool first0 = b0 <= b1;
     const int near = first0 ? c0 : c1, far = first0 ? c1 : c0;
     const double bn = first0 ? b0 : b1, bf = first0 ? b1 : b0;
-    if (!(bf > best)) stack.push_back({far, bf});
-    if (!(bn > best)) stack.push_back({near, bn});
+    if (!v.prune(bf)) stack.push_back({far, bf});
+    if (!v.prune(bn)) stack.push_back({near, bn});
   }
-  return best_i;
 }
 
-DSS_TARGET_AVX2 std::size_t PointTree::nearestAvx2(const double* q) const {
-  return search<true>(q);
-}
-std::size_t PointTree::nearestSse2(const double* q) const { return search<true>(q); }
-std::size_t PointTree::nearestScalar(const double* q) const { return search<false>(q); }
+// Each search on each instruction set (the AVX2 one compiled for it).
+#define DSS_POINT_TREE_PATHS(Name, Visitor)                                                \
+  DSS_TARGET_AVX2 void PointTree::Name##Avx2(const double* q, Visitor& v) const {          \
+    search<true>(q, v);                                                                    \
+  }                                                                                        \
+  void PointTree::Name##Sse2(const double* q, Visitor& v) const { search<true>(q, v); }    \
+  void PointTree::Name##Scalar(const double* q, Visitor& v) const { search<false>(q, v); } \
+  void PointTree::Name##On(const double* q, Visitor& v) const {                            \
+    switch (path_) {                                                                       \
+      case SimdPath::kAvx2:                                                                \
+        return Name##Avx2(q, v);                                                           \
+      case SimdPath::kSse2:                                                                \
+        return Name##Sse2(q, v);                                                           \
+      case SimdPath::kScalar:                                                              \
+        break;                                                                             \
+    }                                                                                      \
+    Name##Scalar(q, v);                                                                    \
+  }
+DSS_POINT_TREE_PATHS(nearest, Nearest)
+DSS_POINT_TREE_PATHS(nearestK, NearestK)
+DSS_POINT_TREE_PATHS(withinRadius, WithinRadius)
+#undef DSS_POINT_TREE_PATHS
 
 std::size_t PointTree::nearest(const double* q) const {
-  switch (path_) {
-    case SimdPath::kAvx2:
-      return nearestAvx2(q);
-    case SimdPath::kSse2:
-      return nearestSse2(q);
-    case SimdPath::kScalar:
-      break;
-  }
-  return nearestScalar(q);
+  Nearest v;
+  nearestOn(q, v);
+  return v.best_i;
+}
+
+void PointTree::nearestK(const double* q, std::size_t k, std::vector<Found>& out) const {
+  out.clear();
+  if (k == 0) return;
+  NearestK v{k, out};
+  nearestKOn(q, v);
+  std::sort_heap(out.begin(), out.end());
+}
+
+void PointTree::withinRadius(const double* q, double radius, std::vector<Found>& out) const {
+  out.clear();
+  WithinRadius v{radius, out};
+  withinRadiusOn(q, v);
+  std::sort(out.begin(), out.end());
 }
 
 }  // namespace dss

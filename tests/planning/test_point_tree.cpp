@@ -1,14 +1,16 @@
 // The k-d tree of buckets (PointTree) against a scan of every point: the same nearest point
 // (the least squared distance below infinity, summed as OMPL sums it, the lowest index among
-// equal ones) on random, clustered and tied points, with removals, points added in sorted order,
-// points it cannot tell apart and non-finite values, on every instruction set; PointBlocks and
-// VectorNearestNeighbors past the size where they hand their queries to it.
+// equal ones), the same k nearest and the same points within a radius, on random, clustered and
+// tied points, with removals, points added in sorted order, points it cannot tell apart and
+// non-finite values, on every instruction set; PointBlocks and VectorNearestNeighbors past the size
+// where they hand their queries to it.
 // clang-format off
 #include <iostream>  // before GNAT's header, which uses std::cout without including it
 // clang-format on
 
 #include <ompl/datastructures/NearestNeighborsGNATNoThreadSafety.h>
 
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <deque>
@@ -48,6 +50,16 @@ struct Reference {
       s += diff * diff;
     }
     return s;
+  }
+  // Every (squared distance, index), a NaN distance as infinite, sorted.
+  std::vector<dss::PointTree::Found> sorted(const double* q) const {
+    std::vector<dss::PointTree::Found> all;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const double s = squared(pts[i], q);
+      all.emplace_back(std::isnan(s) ? kInf : s, i);
+    }
+    std::sort(all.begin(), all.end());
+    return all;
   }
   std::size_t nearest(const double* q) const {
     double best = kInf;
@@ -144,10 +156,32 @@ BOOST_AUTO_TEST_CASE(finds_what_a_scan_finds_with_additions_and_removals) {
         for (auto& t : trees) t.insert(ref.pts.size(), v.data());
         ref.pts.push_back(v);
       }
-      if (step % 5 != 0 && step + 1 != target + target / 3) continue;
+      if (step % (target >= 1500 ? 97 : 5) != 0 && step + 1 != target + target / 3) continue;
       for (int k = 0; k < 4; ++k, ++queries) {
         const std::vector<double> q = drawQuery(dim, rng, ref);
         const std::size_t expected = ref.nearest(q.data());
+        // The k nearest, and the points within the distance of one of them (included) and
+        // one ulp below it (excluded).
+        const std::vector<dss::PointTree::Found> all = ref.sorted(q.data());
+        const std::size_t kk = std::size_t(rng() % 40);
+        std::vector<dss::PointTree::Found> k_expected(all.begin(),
+                                                      all.begin() + std::min(kk, all.size()));
+        const double r_at = all.empty() ? 1.0 : std::sqrt(all[rng() % all.size()].first);
+        std::vector<dss::PointTree::Found> found;
+        for (std::size_t t = 0; t < trees.size(); ++t) {
+          trees[t].nearestK(q.data(), kk, found);
+          BOOST_REQUIRE_MESSAGE(found == k_expected, "k nearest, k = " << kk);
+          for (const double r : {r_at, std::nextafter(r_at, 0.0)}) {
+            std::vector<dss::PointTree::Found> r_expected;
+            for (const auto& e : all)
+              if (std::sqrt(ref.squared(ref.pts[e.second], q.data())) <= r)
+                r_expected.emplace_back(ref.squared(ref.pts[e.second], q.data()), e.second);
+            trees[t].withinRadius(q.data(), r, found);
+            BOOST_REQUIRE_MESSAGE(found == r_expected, "within " << r << ": " << found.size()
+                                                                 << " points, expected "
+                                                                 << r_expected.size());
+          }
+        }
         for (std::size_t t = 0; t < trees.size(); ++t) {
           BOOST_REQUIRE_EQUAL(trees[t].size(), ref.pts.size());
           const std::size_t got = trees[t].nearest(q.data());
@@ -251,6 +285,14 @@ BOOST_AUTO_TEST_CASE(point_blocks_with_the_tree_find_what_their_scan_finds) {
       if (step % 7 != 0) continue;
       const std::vector<double> q = drawQuery(dim, rng, ref);
       BOOST_REQUIRE_EQUAL(with.nearest(q.data()), scan.nearest(q.data()));
+      std::vector<dss::PointBlocks::Found> a, b;
+      with.nearestK(q.data(), 10, a);
+      scan.nearestK(q.data(), 10, b);
+      BOOST_REQUIRE(a == b);
+      const double r = b.empty() ? 1.0 : std::sqrt(b.back().first);
+      with.withinRadius(q.data(), r, a);
+      scan.withinRadius(q.data(), r, b);
+      BOOST_REQUIRE(a == b);
     }
     BOOST_CHECK_GT(with.size(), dss::PointBlocks::kTreeFrom);
   }

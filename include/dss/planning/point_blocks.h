@@ -4,8 +4,8 @@
 // RealVectorStateSpace::distance sums it (whose square root is the distance), so every point
 // gets the distance OMPL gives it, on every instruction set (dss/core/simd_path.h). The unused
 // places of the last block hold NaN, which is never nearer than anything. From kTreeFrom points
-// on, nearest() asks a PointTree over the same points (point_tree.h), which finds the same point
-// without a scan of every one.
+// on, the queries go to a PointTree over the same points (point_tree.h), which finds the same
+// points without a scan of every one.
 #pragma once
 
 #include <cstddef>
@@ -21,13 +21,13 @@ namespace dss {
 class PointBlocks {
  public:
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  /// The size from which nearest() asks the tree by default (below it a scan costs no more).
+  /// The size from which the queries go to the tree by default (below it a scan costs no more).
   static constexpr std::size_t kTreeFrom = 512;
   /// (squared distance, index) of a point found by a query.
   using Found = std::pair<double, std::size_t>;
 
   /// Scans on activeSimdPath(), or on `path` (the best available when the CPU lacks it);
-  /// nearest() asks the tree from `tree_from` points on (SIZE_MAX: never).
+  /// the queries go to the tree from `tree_from` points on (SIZE_MAX: never).
   explicit PointBlocks(unsigned dimension);
   PointBlocks(unsigned dimension, SimdPath path, std::size_t tree_from = kTreeFrom);
 

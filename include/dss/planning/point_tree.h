@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "dss/core/simd_path.h"
@@ -27,6 +28,8 @@ namespace dss {
 class PointTree {
  public:
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  /// (squared distance, index) of a point found by a query.
+  using Found = std::pair<double, std::size_t>;
   /// Points a bucket holds before it splits (more only where its points cannot be told apart).
   static constexpr std::size_t kBucket = 128;
 
@@ -45,6 +48,12 @@ class PointTree {
   /// The index of the point nearest to q: the least squared distance below infinity, the lowest
   /// index among equal ones; kNone when no point is at such a distance (none held, a NaN in q).
   std::size_t nearest(const double* q) const;
+  /// The k nearest points, nearest first (ties: the lower index first); a NaN distance counts
+  /// as infinite. As PointBlocks::nearestK.
+  void nearestK(const double* q, std::size_t k, std::vector<Found>& out) const;
+  /// The points whose distance (the square root of the squared distance, as OMPL compares it)
+  /// is <= radius, nearest first (ties: the lower index first). As PointBlocks::withinRadius.
+  void withinRadius(const double* q, double radius, std::vector<Found>& out) const;
   /// The deepest bucket's depth (the root's is 0).
   int depth() const { return depth_; }
 
@@ -83,14 +92,25 @@ class PointTree {
              std::vector<double>& vals, int depth);
   /// The squared distance from q to the node's box (a lower bound of its points' distances).
   double boxBound(int node, const double* q) const;
-  /// The bucket's points considered as nearest: four at a time (kQuad) or one at a time.
-  template <bool kQuad>
-  void scanBucket(const Bucket& b, const double* q, double& best, std::size_t& best_i) const;
-  template <bool kQuad>
-  std::size_t search(const double* q) const;
-  std::size_t nearestAvx2(const double* q) const;
-  std::size_t nearestSse2(const double* q) const;
-  std::size_t nearestScalar(const double* q) const;
+  /// The bucket's points handed to the visitor: four at a time (kQuad) or one at a time.
+  template <bool kQuad, class Visitor>
+  void scanBucket(const Bucket& b, const double* q, Visitor& v) const;
+  /// The nodes the visitor cannot prune, nearer child first.
+  template <bool kQuad, class Visitor>
+  void search(const double* q, Visitor& v) const;
+  // What the searches collect (point_tree.cpp), and each search on each instruction set.
+  struct Nearest;
+  struct NearestK;
+  struct WithinRadius;
+#define DSS_POINT_TREE_PATHS(Name, Visitor)             \
+  void Name##Avx2(const double* q, Visitor& v) const;   \
+  void Name##Sse2(const double* q, Visitor& v) const;   \
+  void Name##Scalar(const double* q, Visitor& v) const; \
+  void Name##On(const double* q, Visitor& v) const;
+  DSS_POINT_TREE_PATHS(nearest, Nearest)
+  DSS_POINT_TREE_PATHS(nearestK, NearestK)
+  DSS_POINT_TREE_PATHS(withinRadius, WithinRadius)
+#undef DSS_POINT_TREE_PATHS
 
   unsigned dim_;
   SimdPath path_;
