@@ -31,7 +31,6 @@ void PointTree::clear() {
   nodes_.clear();
   boxes_.clear();
   buckets_.clear();
-  free_buckets_.clear();
   where_.clear();
 }
 
@@ -43,11 +42,6 @@ int PointTree::newNode() {
 }
 
 int PointTree::newBucket() {
-  if (!free_buckets_.empty()) {
-    const int b = free_buckets_.back();
-    free_buckets_.pop_back();
-    return b;
-  }
   buckets_.emplace_back();
   return static_cast<int>(buckets_.size() - 1);
 }
@@ -97,7 +91,8 @@ void PointTree::insert(std::size_t index, const double* v) {
   append(nodes_[std::size_t(n)].bucket, index, v);
   ++size_;
   depth_ = std::max(depth_, depth);
-  if (buckets_[std::size_t(nodes_[std::size_t(n)].bucket)].count > kBucket) split(n, depth);
+  const Bucket& b = buckets_[std::size_t(nodes_[std::size_t(n)].bucket)];
+  if (b.count > b.split_past) split(n, depth);
   if (depth_ > std::max(depthLimit(size_), 2 * rebuild_depth_)) rebuild();
 }
 
@@ -155,7 +150,10 @@ void PointTree::split(int node, int depth) {
     }
     if (hi - lo > widest) widest = hi - lo, best = static_cast<int>(d);
   }
-  if (best < 0) return;  // the points cannot be told apart: the bucket stays as it is
+  if (best < 0) {  // the points cannot be told apart: the bucket stays as it is
+    buckets_[std::size_t(bi)].split_past = 2 * count;
+    return;
+  }
   // The median of that value; below it to child 0, the rest (NaN too) to child 1, neither empty.
   std::vector<double> xs;
   xs.reserve(count);
@@ -169,6 +167,7 @@ void PointTree::split(int node, int depth) {
   emptied.data.clear();
   emptied.index.clear();
   emptied.count = 0;
+  emptied.split_past = kBucket;
   const int c0 = newNode();
   const int c1 = newNode();
   Node& n = nodes_[std::size_t(node)];
@@ -204,7 +203,6 @@ void PointTree::rebuild() {
   nodes_.clear();
   boxes_.clear();
   buckets_.clear();
-  free_buckets_.clear();
   depth_ = 0;
   // The subtrees to build, without recursion: (node, first, end, depth) over the permutation.
   std::vector<std::size_t> order(n);
@@ -234,6 +232,7 @@ void PointTree::rebuild() {
       nodes_[std::size_t(job.node)].bucket = b;
       for (std::size_t i = job.begin; i < job.end; ++i)
         append(b, index[order[i]], vals.data() + order[i] * dim_);
+      buckets_[std::size_t(b)].split_past = std::max(kBucket, 2 * (job.end - job.begin));
       depth_ = std::max(depth_, job.depth);
       continue;
     }

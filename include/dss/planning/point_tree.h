@@ -69,6 +69,9 @@ class PointTree {
         data;  ///< blocks of four: block b, value d, lane l at (b * dim + d) * 4 + l
     std::vector<std::size_t> index;  ///< per place (kNone past the points)
     std::size_t count = 0;
+    /// It splits past this many points: kBucket, or twice the count at which its points could
+    /// not be told apart (so that copies of one point do not make every addition a split).
+    std::size_t split_past = kBucket;
   };
   struct Where {
     int bucket = -1;
@@ -120,7 +123,6 @@ class PointTree {
   std::vector<Node> nodes_;
   std::vector<double> boxes_;  ///< per node: its lower corner, then its upper corner
   std::vector<Bucket> buckets_;
-  std::vector<int> free_buckets_;
   std::vector<Where> where_;  ///< per index
 };
 
