@@ -1,6 +1,6 @@
 // The squared distances of four points to a query at once: the kernel of PointBlocks' scans and
 // of PointTree's buckets, which both keep points in blocks of four (block b, value d, lane l at
-// (b * dim + d) * 4 + l).
+// (b * dim + d) * 4 + l); and the step both take to keep the k nearest.
 //
 // Quad is the compiler's vector of four doubles: one AVX register in a function compiled for
 // AVX2, two SSE2 registers otherwise; the scalar path works lane by lane. Every path forms each
@@ -14,7 +14,13 @@
 // for the whole file with -Wpsabi.)
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstring>
+#include <limits>
+#include <utility>
+#include <vector>
 
 namespace dss {
 namespace detail {
@@ -42,6 +48,23 @@ inline void blockScalar(const double* block, const double* q, unsigned dim, doub
       acc += diff * diff;
     }
     out[l] = acc;
+  }
+}
+
+/// One point offered to the k nearest so far, a max-heap in `out` of (squared distance, index)
+/// pairs (ties ordered by index); a NaN distance counts as infinite. std::sort_heap gives them
+/// nearest first.
+inline void offerNearestK(std::vector<std::pair<double, std::size_t>>& out, std::size_t k, double d,
+                          std::size_t i) {
+  const std::pair<double, std::size_t> e{
+      std::isnan(d) ? std::numeric_limits<double>::infinity() : d, i};
+  if (out.size() < k) {
+    out.push_back(e);
+    std::push_heap(out.begin(), out.end());
+  } else if (e < out.front()) {
+    std::pop_heap(out.begin(), out.end());
+    out.back() = e;
+    std::push_heap(out.begin(), out.end());
   }
 }
 

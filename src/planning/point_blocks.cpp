@@ -173,18 +173,7 @@ void PointBlocks::nearestK(const double* q, std::size_t k, std::vector<Found>& o
   if (k == 0 || n_ == 0) return;
   if (tree_on_) return tree_.nearestK(q, k, out);
   const double* dist = allDistances(q);
-  // A max-heap of the k nearest so far; (distance, index) pairs order ties by index.
-  for (std::size_t i = 0; i < n_; ++i) {
-    const Found e{std::isnan(dist[i]) ? std::numeric_limits<double>::infinity() : dist[i], i};
-    if (out.size() < k) {
-      out.push_back(e);
-      std::push_heap(out.begin(), out.end());
-    } else if (e < out.front()) {
-      std::pop_heap(out.begin(), out.end());
-      out.back() = e;
-      std::push_heap(out.begin(), out.end());
-    }
-  }
+  for (std::size_t i = 0; i < n_; ++i) detail::offerNearestK(out, k, dist[i], i);
   std::sort_heap(out.begin(), out.end());
 }
 

@@ -62,7 +62,7 @@ void PointTree::append(int bucket, std::size_t index, const double* v) {
     b.data.resize(b.data.size() + std::size_t(dim_) * 4, kNaN);
     b.index.resize(b.index.size() + 4, kNone);
   }
-  double* at = b.data.data() + (p / 4) * dim_ * 4 + p % 4;
+  double* at = placeIn(b, p);
   for (unsigned d = 0; d < dim_; ++d) at[4 * d] = v[d];
   b.index[p] = index;
   ++b.count;
@@ -70,7 +70,7 @@ void PointTree::append(int bucket, std::size_t index, const double* v) {
 }
 
 void PointTree::values(const Bucket& b, std::size_t place, double* v) const {
-  const double* at = b.data.data() + (place / 4) * dim_ * 4 + place % 4;
+  const double* at = placeIn(b, place);
   for (unsigned d = 0; d < dim_; ++d) v[d] = at[4 * d];
 }
 
@@ -100,15 +100,14 @@ void PointTree::swapRemove(std::size_t index, std::size_t moved) {
   const Where w = where_[index];
   Bucket& b = buckets_[std::size_t(w.bucket)];
   const std::size_t last = b.count - 1;
-  std::vector<double> v(dim_);
   if (w.place != last) {
-    values(b, last, v.data());
-    double* at = b.data.data() + (w.place / 4) * dim_ * 4 + w.place % 4;
-    for (unsigned d = 0; d < dim_; ++d) at[4 * d] = v[d];
+    double* to = placeIn(b, w.place);
+    const double* from = placeIn(b, last);
+    for (unsigned d = 0; d < dim_; ++d) to[4 * d] = from[4 * d];
     b.index[w.place] = b.index[last];
     where_[b.index[w.place]].place = w.place;
   }
-  double* at = b.data.data() + (last / 4) * dim_ * 4 + last % 4;
+  double* at = placeIn(b, last);
   for (unsigned d = 0; d < dim_; ++d) at[4 * d] = kNaN;
   b.index[last] = kNone;
   --b.count;
@@ -290,17 +289,7 @@ struct PointTree::NearestK {
   std::vector<Found>& out;
   double filter() const { return kInf; }
   bool prune(double bound) const { return out.size() == k && bound > out.front().first; }
-  void point(double d, std::size_t i) {
-    const Found e{std::isnan(d) ? kInf : d, i};
-    if (out.size() < k) {
-      out.push_back(e);
-      std::push_heap(out.begin(), out.end());
-    } else if (e < out.front()) {
-      std::pop_heap(out.begin(), out.end());
-      out.back() = e;
-      std::push_heap(out.begin(), out.end());
-    }
-  }
+  void point(double d, std::size_t i) { detail::offerNearestK(out, k, d, i); }
 };
 
 // The points whose distance (the square root, as OMPL compares it) is at most the radius. The

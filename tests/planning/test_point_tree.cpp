@@ -21,6 +21,7 @@
 #include "dss/planning/point_blocks.h"
 #include "dss/planning/point_tree.h"
 #include "dss/planning/vector_nearest_neighbors.h"
+#include "support/simd_paths.h"
 
 namespace ob = ompl::base;
 
@@ -30,12 +31,7 @@ constexpr std::size_t kNone = dss::PointTree::kNone;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 
-std::vector<dss::SimdPath> availablePaths() {
-  std::vector<dss::SimdPath> paths;
-  for (auto p : {dss::SimdPath::kScalar, dss::SimdPath::kSse2, dss::SimdPath::kAvx2})
-    if (dss::simdPathAvailable(p)) paths.push_back(p);
-  return paths;
-}
+using dss_test::availablePaths;
 
 // The points by index, as PointBlocks holds them (a removal moves the last point into the
 // place), and the scan every search must agree with.

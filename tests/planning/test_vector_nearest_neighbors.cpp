@@ -24,6 +24,7 @@
 #include "dss/planning/vector_nearest_neighbors.h"
 #include "dss/scene/plan_request.h"
 #include "dss/scene/scene_loader.h"
+#include "support/simd_paths.h"
 #include "support/thrown_message.h"
 
 namespace ob = ompl::base;
@@ -78,12 +79,7 @@ double squaredDistance(const double* a, const double* b, unsigned dim) {
   return s;
 }
 
-std::vector<dss::SimdPath> availablePaths() {
-  std::vector<dss::SimdPath> paths;
-  for (auto p : {dss::SimdPath::kScalar, dss::SimdPath::kSse2, dss::SimdPath::kAvx2})
-    if (dss::simdPathAvailable(p)) paths.push_back(p);
-  return paths;
-}
+using dss_test::availablePaths;
 
 }  // namespace
 

@@ -84,6 +84,13 @@ class PointTree {
   double* upper(int node) { return lower(node) + dim_; }
   const double* lower(int node) const { return boxes_.data() + std::size_t(node) * 2 * dim_; }
   const double* upper(int node) const { return lower(node) + dim_; }
+  /// The first value of a bucket's place p (the others every fourth double after it).
+  double* placeIn(Bucket& b, std::size_t p) const {
+    return b.data.data() + (p / 4) * dim_ * 4 + p % 4;
+  }
+  const double* placeIn(const Bucket& b, std::size_t p) const {
+    return b.data.data() + (p / 4) * dim_ * 4 + p % 4;
+  }
   void grow(int node, const double* v);
   void append(int bucket, std::size_t index, const double* v);
   void values(const Bucket& b, std::size_t place, double* v) const;
