@@ -74,9 +74,7 @@ bool DiscreteMotionValidator::usableEnds(const ob::State*& s1, const ob::State*&
     s1 = w1, s2 = w2;
     return true;
   }
-  KindCounts& c = kind_counts_[0];
-  c.motions.fetch_add(1, std::memory_order_relaxed);
-  c.colliding.fetch_add(1, std::memory_order_relaxed);
+  count(MotionOrder::kEndFirst, true, 0, 0);
   return false;
 }
 
@@ -150,12 +148,18 @@ bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, in
     };
     ok = motionStatesFree(segments, free, first_colliding, kind);
   }
-  KindCounts& c = kind_counts_[kind == MotionOrder::kEndLast];
-  c.motions.fetch_add(1, std::memory_order_relaxed);
-  if (!ok) c.colliding.fetch_add(1, std::memory_order_relaxed);
-  c.exact_states.fetch_add(exact, std::memory_order_relaxed);
-  if (proven) c.batch_free_states.fetch_add(proven, std::memory_order_relaxed);
+  count(kind, !ok, exact, proven);
   return ok;
+}
+
+void DiscreteMotionValidator::count(MotionOrder kind, bool colliding, std::uint64_t exact,
+                                    std::uint64_t proven) const {
+  const int slot = threadSlotIndex();
+  KindCounts& c = count_slots_[slot].kind[kind == MotionOrder::kEndLast];
+  addToSlot(c.motions, 1, slot);
+  if (colliding) addToSlot(c.colliding, 1, slot);
+  addToSlot(c.exact_states, exact, slot);
+  if (proven) addToSlot(c.batch_free_states, proven, slot);
 }
 
 std::uint64_t DiscreteMotionValidator::validMotions() const {
@@ -168,12 +172,14 @@ std::uint64_t DiscreteMotionValidator::invalidMotions() const {
 }
 
 MotionCounts DiscreteMotionValidator::counts(MotionOrder kind) const {
-  const KindCounts& c = kind_counts_[kind == MotionOrder::kEndLast];
   MotionCounts out;
-  out.motions = c.motions.load(std::memory_order_relaxed);
-  out.colliding = c.colliding.load(std::memory_order_relaxed);
-  out.exact_states = c.exact_states.load(std::memory_order_relaxed);
-  out.batch_free_states = c.batch_free_states.load(std::memory_order_relaxed);
+  for (const CountSlot& slot : count_slots_) {
+    const KindCounts& c = slot.kind[kind == MotionOrder::kEndLast];
+    out.motions += c.motions.load(std::memory_order_relaxed);
+    out.colliding += c.colliding.load(std::memory_order_relaxed);
+    out.exact_states += c.exact_states.load(std::memory_order_relaxed);
+    out.batch_free_states += c.batch_free_states.load(std::memory_order_relaxed);
+  }
   return out;
 }
 

@@ -80,6 +80,37 @@ BOOST_AUTO_TEST_CASE(two_threads_give_the_same_answers) {
   BOOST_TEST(counters.collisions == 2 * (states.size() - valid));
 }
 
+BOOST_AUTO_TEST_CASE(counts_add_up_beyond_the_owned_slots) {
+  // More threads than there are owned counter slots: the later threads share the overflow
+  // slot, whose additions are atomic, so that no count is lost. The threads run at once (the
+  // first waits for the last to start) so that the overflow slot is written concurrently.
+  const auto r = dss_test::loadArm();
+  const dss::ModelSetup p = dss_test::shelfSetup(r);
+  const dss::DssChecker c(p.model);
+  std::mt19937_64 rng(11);
+  std::vector<std::vector<double>> states;
+  for (int k = 0; k < 300; ++k) states.push_back(dss_test::randomGroupState(*p.model, rng));
+  std::size_t colliding = 0;
+  for (const auto& q : states) colliding += c.collides(q.data());
+  const dss::CheckerCounters before = c.counters();
+  const int threads = 2 * dss::kOwnedSlots + 3;
+  std::atomic<int> started{0};
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&] {
+      ++started;
+      while (started.load() < threads) std::this_thread::yield();
+      for (const auto& q : states) c.collides(q.data());
+    });
+  for (auto& th : pool) th.join();
+  const dss::CheckerCounters added = c.counters() - before;
+  BOOST_TEST(added.checks == std::uint64_t(threads) * states.size());
+  BOOST_TEST(added.collisions == std::uint64_t(threads) * colliding);
+  BOOST_TEST(colliding > 0u);
+  BOOST_TEST(dss::threadSlotIndex() >= 0);
+  BOOST_TEST(dss::threadSlotIndex() <= dss::kOwnedSlots);
+}
+
 BOOST_AUTO_TEST_CASE(timed_checks_add_their_time_and_change_no_answer) {
   const auto r = dss_test::loadArm();
   const dss::ModelSetup p = dss_test::shelfSetup(r);

@@ -1,6 +1,7 @@
 // Counters of a checker: what it was asked and what it found. They are the only state a
 // checker changes while it answers, kept in per-thread slots (a cache line each, a thread's
-// slot chosen once) so that threads checking in parallel never write to the same line.
+// slot chosen once) so that threads checking in parallel never write to the same line, and a
+// count costs no locked instruction.
 #pragma once
 
 #include <atomic>
@@ -28,21 +29,44 @@ struct CheckerCounters {
   }
 };
 
+/// Per-thread slots: the first kOwnedSlots threads that ask each own one slot index for good,
+/// the same in every slot array; every later thread shares the overflow index kOwnedSlots.
+/// A thread adds to an owned slot with a plain read and write (no locked instruction: no
+/// other thread writes it), to the overflow slot atomically.
+constexpr int kOwnedSlots = 16;
+inline int threadSlotIndex() {
+  static std::atomic<int> next{0};
+  thread_local const int index = [] {
+    int i = next.load(std::memory_order_relaxed);
+    while (i < kOwnedSlots && !next.compare_exchange_weak(i, i + 1, std::memory_order_relaxed)) {
+    }
+    return i < kOwnedSlots ? i : kOwnedSlots;
+  }();
+  return index;
+}
+/// n added to counter c of slot `index` (threadSlotIndex()).
+inline void addToSlot(std::atomic<std::uint64_t>& c, std::uint64_t n, int index) {
+  if (index < kOwnedSlots)
+    c.store(c.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
+  else
+    c.fetch_add(n, std::memory_order_relaxed);
+}
+
 class CounterSlots {
  public:
   struct alignas(64) Slot {
     std::atomic<std::uint64_t> checks{0}, invalid_input{0}, collisions{0}, pair_tests{0},
         cap_hits{0}, checking_ns{0}, batch_free{0};
-    void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) {
-      c.fetch_add(n, std::memory_order_relaxed);
-    }
+    int index = 0;  ///< this slot's index (threadSlotIndex())
+    void add(std::atomic<std::uint64_t>& c, std::uint64_t n = 1) { addToSlot(c, n, index); }
   };
-  /// This thread's slot.
-  Slot& local() const {
-    static std::atomic<int> next{0};
-    thread_local const int index = next.fetch_add(1, std::memory_order_relaxed) % kSlots;
-    return slots_[index];
+  CounterSlots() {
+    for (int i = 0; i <= kOwnedSlots; ++i) slots_[i].index = i;
   }
+  CounterSlots(const CounterSlots&) = delete;
+  CounterSlots& operator=(const CounterSlots&) = delete;
+  /// This thread's slot.
+  Slot& local() const { return slots_[threadSlotIndex()]; }
   CheckerCounters sum() const {
     CheckerCounters c;
     for (const Slot& s : slots_) {
@@ -58,8 +82,7 @@ class CounterSlots {
   }
 
  private:
-  static constexpr int kSlots = 16;
-  mutable Slot slots_[kSlots];
+  mutable Slot slots_[kOwnedSlots + 1];
 };
 
 }  // namespace dss

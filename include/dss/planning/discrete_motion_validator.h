@@ -29,6 +29,7 @@
 #include <memory>
 #include <utility>
 
+#include "dss/checker/checker_counters.h"
 #include "dss/checker/discrete_motion.h"
 #include "dss/planning/group_state_space.h"
 
@@ -79,11 +80,17 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
 
   std::shared_ptr<const DiscreteMotionChecker> motion_;
   std::shared_ptr<const GroupStateMap> map_;
-  /// MotionCounts' fields, atomic, per kind (kEndFirst, kEndLast).
+  /// MotionCounts' fields per kind (kEndFirst, kEndLast), in per-thread slots as the checkers'
+  /// counters (checker_counters.h).
   struct KindCounts {
     std::atomic<std::uint64_t> motions{0}, colliding{0}, exact_states{0}, batch_free_states{0};
   };
-  mutable KindCounts kind_counts_[2];
+  struct alignas(64) CountSlot {
+    KindCounts kind[2];
+  };
+  /// One motion of `kind` counted in this thread's slot.
+  void count(MotionOrder kind, bool colliding, std::uint64_t exact, std::uint64_t proven) const;
+  mutable CountSlot count_slots_[kOwnedSlots + 1];
 };
 
 }  // namespace dss
