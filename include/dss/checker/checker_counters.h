@@ -63,8 +63,6 @@ class CounterSlots {
   CounterSlots() {
     for (int i = 0; i <= kOwnedSlots; ++i) slots_[i].index = i;
   }
-  CounterSlots(const CounterSlots&) = delete;
-  CounterSlots& operator=(const CounterSlots&) = delete;
   /// This thread's slot.
   Slot& local() const { return slots_[threadSlotIndex()]; }
   CheckerCounters sum() const {
