@@ -4,6 +4,7 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <stdexcept>
 #include <vector>
 
 #include "dss/planning/validity_checker.h"
@@ -83,8 +84,7 @@ bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* 
   // the motion colliding before the space measures it: its segment count would be undefined or
   // absurd.
   if (!usableEnds(s1, s2)) return false;
-  const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
-  return check(s1, s2, n, nullptr);
+  return check(s1, s2, segmentCount(s1, s2), nullptr);
 }
 
 bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
@@ -95,12 +95,21 @@ bool DiscreteMotionValidator::checkMotion(const ob::State* s1, const ob::State* 
     if (lastValid.first) si_->getStateSpace()->copyState(lastValid.first, start);
     return false;
   }
-  const int n = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
+  const int n = segmentCount(s1, s2);
   int first = 0;
   if (check(s1, s2, n, &first)) return true;
   lastValid.second = n > 0 ? double(first - 1) / double(n) : 0.0;
   if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
   return false;
+}
+
+int DiscreteMotionValidator::segmentCount(const ob::State* s1, const ob::State* s2) const {
+  const ob::StateSpace& space = *si_->getStateSpace();
+  if (!(space.getLongestValidSegmentLength() > 0.0))
+    throw std::logic_error("dss::DiscreteMotionValidator: state space '" + space.getName() +
+                           "' is not set up (no resolution yet): call setup() on the space "
+                           "information (SimpleSetup::setup and solve do) before checking motions");
+  return static_cast<int>(space.validSegmentCount(s1, s2));
 }
 
 bool DiscreteMotionValidator::check(const ob::State* s1, const ob::State* s2, int n,

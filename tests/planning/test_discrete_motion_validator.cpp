@@ -31,6 +31,7 @@
 #include "dss/scene/scene_loader.h"
 #include "support/checker_fixtures.h"
 #include "support/shared_data.h"
+#include "support/thrown_message.h"
 
 namespace ob = ompl::base;
 
@@ -620,4 +621,55 @@ BOOST_AUTO_TEST_CASE(a_motion_with_nan_inf_or_out_of_bounds_at_an_end_collides) 
   BOOST_TEST(bad_states == 4 * 7 + 4 * 2 - 1);
   BOOST_TEST(wrapped_motions == 200);
 }
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(discrete_motion_validator)
+
+// Before the space is set up it has no resolution (its longest valid segment is 0, and OMPL's
+// segment count divides by it): a motion check then throws rather than check the end alone. On
+// the shelf, a motion whose end is free and whose middle collides: refused once set up.
+BOOST_AUTO_TEST_CASE(a_motion_checked_before_the_space_is_set_up_throws) {
+  const std::string dir = kRobots + "/dss_arm7";
+  const dss::LoadedRobot robot = dss::loadRobot(dir + "/dss_arm7.urdf", dir + "/dss_arm7.srdf");
+  const auto req = dss::loadPlanRequestYaml(dir + "/scenes/shelf_request.yaml");
+  dss::Problem p = dss::makeProblem(robot, dss::loadScene(dir + "/scenes/shelf.yaml"),
+                                    req.group_name, req.startState());
+  auto checker = dss::makeValidityChecker(p, {"dss"});
+  p.si->setStateValidityChecker(checker);
+  const ob::SpaceInformationPtr& si = p.si;
+  // The ends: valid states, found before the set-up through the validity checker alone.
+  std::mt19937_64 rng(3);
+  const auto& bounds = si->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds();
+  ob::ScopedState<> a(si->getStateSpace()), b(si->getStateSpace()), mid(si->getStateSpace());
+  auto draw = [&](ob::ScopedState<>& s) {
+    for (int tries = 0; tries < 10000; ++tries) {
+      for (std::size_t j = 0; j < bounds.low.size(); ++j)
+        s[j] = std::uniform_real_distribution<double>(bounds.low[j], bounds.high[j])(rng);
+      if (si->isValid(s.get())) return;
+    }
+    BOOST_FAIL("no valid state in 10000 draws");
+  };
+  bool found = false;
+  for (int k = 0; k < 2000 && !found; ++k) {
+    draw(a), draw(b);
+    si->getStateSpace()->interpolate(a.get(), b.get(), 0.5, mid.get());
+    found = !si->isValid(mid.get());
+  }
+  BOOST_REQUIRE(found);
+  for (const bool vector : {false, true}) {
+    auto mv = dss::makeDiscreteMotionValidator(p, *checker, vector);
+    std::pair<ob::State*, double> last{mid.get(), -1.0};
+    const std::string m =
+        dss_test::thrownMessage<std::logic_error>([&] { (void)mv->checkMotion(a.get(), b.get()); });
+    BOOST_TEST(m.find("not set up") != std::string::npos, m);
+    BOOST_TEST(m.find("call setup()") != std::string::npos, m);
+    BOOST_CHECK_THROW((void)mv->checkMotion(a.get(), b.get(), last), std::logic_error);
+  }
+  si->setup();
+  for (const bool vector : {false, true}) {
+    auto mv = dss::makeDiscreteMotionValidator(p, *checker, vector);
+    BOOST_TEST(!mv->checkMotion(a.get(), b.get()));
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

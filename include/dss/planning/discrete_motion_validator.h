@@ -16,7 +16,9 @@
 // checker decides them. The end state always goes through the space information's validity
 // checker, as in OMPL. A motion with NaN, an infinity or a bounded value beyond its limits at
 // either end is colliding (OMPL assumes the start valid; such a start is not); an angle beyond
-// [-pi, pi] is taken as the same angle within it. Motion counts are atomic (OMPL's own counters are
+// [-pi, pi] is taken as the same angle within it. A motion checked before the space is set up
+// (SpaceInformation::setup, which SimpleSetup's setup and solve call) throws: the space has
+// no resolution yet. Motion counts are atomic (OMPL's own counters are
 // not safe to increment from several threads), also per kind of motion (towards a new state, or
 // from a state just found free towards a held one: MotionOrder), with the states each kind had
 // checked one by one and those batches proved free: where a plan's checking goes.
@@ -71,6 +73,10 @@ class DiscreteMotionValidator : public ompl::base::MotionValidator {
   /// per-thread copies brought within the space's bounds where they lie outside them (an angle
   /// beyond [-pi, pi]: the same joint positions).
   bool usableEnds(const ompl::base::State*& s1, const ompl::base::State*& s2) const;
+  /// The space's validSegmentCount(s1, s2). Throws std::logic_error, naming the space, when
+  /// the space is not set up: its longest valid segment is then 0 and OMPL's count undefined
+  /// (in practice 0, which would check the end state alone).
+  int segmentCount(const ompl::base::State* s1, const ompl::base::State* s2) const;
   /// `first_colliding` (nullptr: not wanted): the first colliding state, in 1 .. n.
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, int n,
              int* first_colliding) const;
