@@ -31,6 +31,9 @@ const char* kUsage =
     "           on the AVX2 path only, elsewhere as discrete), ompl with OMPL's own validator,\n"
     "           continuous certifies the whole motion\n"
     "           --motion-min-fraction f (continuous: smallest sub-motion, 1/1024)\n"
+    "           --direct: try the straight motion from the start to each goal state first\n"
+    "           (a free one is the solution, of two states); the planner runs only when none\n"
+    "           is free. Off by default: OMPL's planners never try it themselves\n"
     "           --nearest vector|ompl (vector): the tree planners' nearest-neighbour search\n"
     "           on a joint-value space: vector scans the states' values four at a time, and\n"
     "           from 512 states on searches a k-d tree of them (the same distances, so the\n"
@@ -112,6 +115,8 @@ Args parseArgs(int argc, char** argv) {
       a.checker = cli.value(), checker_given = true;
     else if (cli.option("--motion"))
       a.motion = cli.value();
+    else if (cli.option("--direct"))
+      a.direct = true;
     else if (cli.option("--nearest"))
       a.nearest = cli.value();
     else if (cli.option("--time"))

@@ -18,6 +18,7 @@ struct Args {
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;
   bool simplify = false;
+  bool direct = false;      // --direct: the straight start-goal motion before the planner
   bool check_time = false;  // the checker times its checks (two clock reads per check)
   dss::MeshGeometryOptions meshes;
   bool demo = false;             // print the readable summary (no arguments, or --demo)

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "benchmark_log.h"
+#include "dss/planning/direct_first_planner.h"
 #include "dss/planning/vector_nearest_neighbors.h"
 #include "invalid_state.h"
 #include "planner_registry.h"
@@ -118,10 +119,12 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     b.addExperimentParameter("dss_max_iterations", "INTEGER",
                              std::to_string(a.dss_options.max_iterations));
     b.addExperimentParameter("nearest", "TEXT", a.nearest);
+    b.addExperimentParameter("direct", "BOOLEAN", a.direct ? "1" : "0");
     for (const auto& planner : a.planner_list)
       for (const auto& c : checkers) {
         ob::PlannerPtr inner = planners().at(planner)(p.si);
         if (a.nearest == "vector") dss::useVectorNearestNeighbors(inner);
+        if (a.direct) inner = std::make_shared<dss::DirectFirstPlanner>(inner);
         b.addPlanner(std::make_shared<CheckerBoundPlanner>(inner, c, switching));
       }
     // Paired seeds: before run j of every entry, OMPL's seed generator restarts from seed + j, so

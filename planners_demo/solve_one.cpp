@@ -14,6 +14,7 @@
 
 #include "dss/core/simd_path.h"
 #include "dss/planning/continuous_motion_validator.h"
+#include "dss/planning/direct_first_planner.h"
 #include "dss/planning/discrete_motion_validator.h"
 #include "dss/planning/vector_nearest_neighbors.h"
 #include "dss/robot/joint_states_csv.h"
@@ -87,7 +88,8 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   ss.setStateValidityChecker(checker);
   if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
   auto factory = planners().find(a.planner);
-  ss.setPlanner(factory->second(p.si));
+  const ob::PlannerPtr planner = factory->second(p.si);
+  ss.setPlanner(a.direct ? std::make_shared<dss::DirectFirstPlanner>(planner) : planner);
   setStartAndGoals(ss, lp);
   const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
   const ob::State* g0 = ss.getGoal()->as<ob::GoalStates>()->getState(0);
@@ -98,8 +100,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   } else if (a.motion == "discrete" || a.motion == "vector") {
     p.si->setMotionValidator(dss::makeDiscreteMotionValidator(p, *checker, a.motion == "vector"));
   }  // "ompl": the space information's default, OMPL's DiscreteMotionValidator
-  const bool vector_nearest =
-      a.nearest == "vector" && dss::useVectorNearestNeighbors(ss.getPlanner());
+  const bool vector_nearest = a.nearest == "vector" && dss::useVectorNearestNeighbors(planner);
   ss.setup();
   const bool start_valid = checker->isValid(s0);
   const bool goal_valid = checker->isValid(g0);
@@ -176,6 +177,10 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["planner"] = a.planner;
   j["motion"] = a.motion;
   j["nearest"] = vector_nearest ? "vector" : "ompl";
+  if (a.direct) {
+    const auto* d = ss.getPlanner()->as<dss::DirectFirstPlanner>();
+    j["direct"] = plan && d->lastWasDirect();  // solved by the straight motion alone
+  }
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
