@@ -5,7 +5,7 @@
 //
 // OMPL's tree planners never try that motion themselves: a problem whose start sees its goal
 // still grows both trees until they meet. Where the straight motion collides, the attempt
-// costs one motion check, which for most such motions ends at one of its first states.
+// costs the ends' checks and the motion's checks up to its first collision, on top of the plan.
 //
 // Only goals made of states are tried (ompl::base::GoalState, as SimpleSetup's
 // setStartAndGoalStates makes, and ompl::base::GoalStates, with the goals derived from them);
