@@ -205,11 +205,13 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
     std::cout << "\n"
               << robot.model->name << " in " << files.scene << "\n  " << p.model->summary()
               << "\n  group '" << p.group << "' (" << p.map->dimension() << " joints), planner "
-              << a.planner << ", checker " << checker->checker().name() << "\n  "
-              << (solved ? "solved" : "NOT solved") << " in " << t * 1e3 << " ms: path of "
-              << path_states << " states, length " << length << " rad; " << counters.checks
-              << " state checks (" << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
-              << " us of planning per check), " << j["motion_checks"] << " motion checks\n";
+              << a.planner << (a.direct ? " after the straight motion" : "") << ", checker "
+              << checker->checker().name() << "\n  " << (solved ? "solved" : "NOT solved") << " in "
+              << t * 1e3 << " ms: path of " << path_states << " states, length " << length
+              << " rad; " << counters.checks << " state checks ("
+              << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
+              << " us of planning per check), " << j["motion_checks"] << " motion checks"
+              << (j.value("direct", false) ? " (the straight motion, free)" : "") << "\n";
   }
   if (!a.render.empty()) writeRender(a, lp, *checker, ss, files, status);
   return {solved, plan ? t : a.time};
