@@ -177,10 +177,10 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["planner"] = a.planner;
   j["motion"] = a.motion;
   j["nearest"] = vector_nearest ? "vector" : "ompl";
-  if (a.direct) {
-    const auto* d = ss.getPlanner()->as<dss::DirectFirstPlanner>();
-    j["direct"] = plan && d->lastWasDirect();  // solved by the straight motion alone
-  }
+  // Solved by the straight motion alone (the wrapped planner did not run).
+  const bool direct_solved =
+      a.direct && plan && ss.getPlanner()->as<dss::DirectFirstPlanner>()->lastWasDirect();
+  if (a.direct) j["direct"] = direct_solved;
   j["seed"] = a.seed;
   j["cap_hits"] = counters.cap_hits;
   if (cmv) j["sub_motions"] = cmv->motionChecker().subMotions();
@@ -211,7 +211,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
               << " rad; " << counters.checks << " state checks ("
               << (counters.checks ? t * 1e6 / double(counters.checks) : 0.0)
               << " us of planning per check), " << j["motion_checks"] << " motion checks"
-              << (j.value("direct", false) ? " (the straight motion, free)" : "") << "\n";
+              << (direct_solved ? " (the straight motion, free)" : "") << "\n";
   }
   if (!a.render.empty()) writeRender(a, lp, *checker, ss, files, status);
   return {solved, plan ? t : a.time};
