@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <typeinfo>
 #include <vector>
 
 namespace dss {
@@ -66,6 +67,10 @@ bool ValidityChecker::lastFoundFree(const ompl::base::State* state) const {
 }
 
 const ValidityChecker* decidingChecker(const ompl::base::StateValidityChecker* checker) {
+  // Asked once per motion: the usual answer, a ValidityChecker itself, by its type alone (a
+  // comparison of two type_info pointers) before the dynamic casts' walk of the hierarchy.
+  if (checker && typeid(*checker) == typeid(ValidityChecker))
+    return static_cast<const ValidityChecker*>(checker);
   if (const auto* ours = dynamic_cast<const ValidityChecker*>(checker)) return ours;
   if (const auto* f = dynamic_cast<const ForwardingValidityChecker*>(checker)) return f->target();
   return nullptr;
