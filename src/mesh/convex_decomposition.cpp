@@ -5,7 +5,6 @@
 // certificate.
 #include "dss/mesh/convex_decomposition.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -93,14 +92,9 @@ struct Decomposer {
     m.tree.nearest(p.cert.deepest, &foot);
     std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
     const auto& pts = p.hull.points;
-    Vec3 mean = Vec3::Zero();
-    for (const Vec3& q : pts) mean += q;
-    mean /= static_cast<double>(pts.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vec3& q : pts) cov += (q - mean) * (q - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Matrix3d axes = principalAxes(pts);
     for (int k = 2; k >= 0; --k) {
-      const Vec3 axis = eig.eigenvectors().col(k);
+      const Vec3 axis = axes.col(k);
       if (!axis.allFinite()) continue;
       bool fresh = true;
       for (const Vec3& n : normals) fresh = fresh && std::abs(n.dot(axis)) < 0.99;

@@ -24,11 +24,8 @@ std::vector<Plane> flatPlanes(const std::vector<Vec3>& pts) {
     Vec3 mean = Vec3::Zero();
     for (const Vec3& p : pts) mean += p;
     mean /= static_cast<double>(pts.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vec3& p : pts) cov += (p - mean) * (p - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const Vec3 n = eig.eigenvectors().col(0), e1 = eig.eigenvectors().col(2),
-               e2 = eig.eigenvectors().col(1);
+    const Eigen::Matrix3d axes = principalAxes(pts);
+    const Vec3 n = axes.col(0), e1 = axes.col(2), e2 = axes.col(1);
     normals.push_back(n);
     normals.push_back(-n);
     // Andrew's monotone chain on the projections.
@@ -71,6 +68,16 @@ std::vector<Plane> flatPlanes(const std::vector<Vec3>& pts) {
 }
 
 }  // namespace
+
+Eigen::Matrix3d principalAxes(const std::vector<Vec3>& pts) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : pts) mean += p;
+  mean /= static_cast<double>(pts.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : pts) cov += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  return eig.eigenvectors();
+}
 
 Hull buildHull(std::vector<Vec3> pts, const MeshData& m, HullMode mode) {
   Hull h;

@@ -25,6 +25,11 @@ enum class HullMode {
   kExact,     // qhull's vertices and every point not proved inside them
 };
 
+/// The principal axes of `pts` (at least one point): the eigenvectors of their scatter matrix
+/// about their mean, as columns by increasing eigenvalue (the last: the direction of largest
+/// spread; the first: the normal of a best-fit plane).
+Eigen::Matrix3d principalAxes(const std::vector<Vec3>& pts);
+
 /// The hull of `pts` (see HullMode).
 Hull buildHull(std::vector<Vec3> pts, const MeshData& m, HullMode mode);
 
