@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "cli.h"
 #include "mesh_cli.h"
@@ -21,6 +22,9 @@ const char* kUsage =
     "  options: --planner NAME (RRTConnect) --checker dss|fcl-hull|fcl-mesh (dss)\n"
     "           --motion discrete|vector|continuous|ompl (discrete) --time SECONDS (10)\n"
     "           --seed N (1)\n"
+    "           --param NAME=VALUE (repeatable): a parameter of the planner, as OMPL names\n"
+    "           it (RRTConnect: range, intermediate_states); with a list of planners, each\n"
+    "           must have it\n"
     "           --padding r --self-padding r --resolution f (OMPL's 0.01) --simplify\n"
     "           --check-time (report checking_time_s: two clock reads per state check)\n"
     "           --mode exact|double|float (dss arithmetic, exact) --max-iterations N (dss cap, "
@@ -121,7 +125,16 @@ Args parseArgs(int argc, char** argv) {
       a.nearest = cli.value();
     else if (cli.option("--time"))
       a.time = cli.number(1e-6, 1e6);
-    else if (cli.option("--seed"))
+    else if (cli.option("--param")) {
+      const std::string v = cli.value();
+      const auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+        cli.error("--param: expected NAME=VALUE, got '" + v + "'");
+      const std::string name = v.substr(0, eq);
+      for (const auto& pv : a.planner_params)
+        if (pv.first == name) cli.error("--param: '" + name + "' given twice");
+      a.planner_params.emplace_back(name, v.substr(eq + 1));
+    } else if (cli.option("--seed"))
       a.seed = static_cast<unsigned long>(cli.integer(0, 4294967295));
     else if (cli.option("--padding"))
       a.padding = cli.number(0.0, 1e3);
@@ -194,6 +207,11 @@ Args parseArgs(int argc, char** argv) {
   for (const auto& pl : a.planner_list)
     if (planners().find(pl) == planners().end())
       cli.error("--planner: unknown planner '" + pl + "' (dss_plan --help lists them)");
+  for (const auto& pl : a.planner_list) try {
+      checkPlannerParams(pl, a.planner_params);
+    } catch (const std::invalid_argument& e) {
+      cli.error(std::string("--param: ") + e.what());
+    }
   for (const auto& c : a.checker_list)
     if (c != "dss" && c != "fcl-hull" && c != "fcl-mesh")
       cli.error("--checker: unknown checker '" + c + "' (dss, fcl-hull, fcl-mesh)");

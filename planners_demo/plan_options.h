@@ -6,6 +6,7 @@
 
 #include "dss/checker/checker_setup.h"
 #include "dss/scene/scene_load_options.h"
+#include "planner_registry.h"
 
 namespace dss_plan {
 
@@ -28,6 +29,7 @@ struct Args {
   unsigned runs = 10;
   std::string log = "dss_plan_benchmark.log";
   std::vector<std::string> planner_list, checker_list;  // --benchmark: comma lists
+  PlannerParams planner_params;                         // --param NAME=VALUE, in order
   long base_table_cells = -1;  // --base-table-cells (-1: the model's default)
   std::size_t scene_mesh_parts = dss::SceneLoadOptions{}.max_mesh_parts;  // --scene-mesh-parts
   long shard_k = 0, shard_n = 0;       // --shard K/N (0: every problem)

@@ -1,6 +1,8 @@
 // The planners dss_plan runs (see planner_registry.h).
 #include "planner_registry.h"
 
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/kpiece/BKPIECE1.h>
 #include <ompl/geometric/planners/kpiece/KPIECE1.h>
@@ -16,6 +18,11 @@
 #include <ompl/geometric/planners/rrt/pRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/sbl/pSBL.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
 
 namespace dss_plan {
 
@@ -40,6 +47,58 @@ const std::map<std::string, PlannerFactory>& planners() {
       {"pSBL", [](auto si) { return std::make_shared<og::pSBL>(si); }},
   };
   return m;
+}
+
+namespace {
+
+// A value that strtod reads whole as a number that is not finite ("nan", "inf", "1e999").
+bool nonFiniteNumber(const std::string& v) {
+  if (v.empty()) return false;
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  return end == v.c_str() + v.size() && !std::isfinite(x);
+}
+
+// Restores OMPL's log level on scope exit (setParam logs its own error for a bad value).
+struct QuietOmpl {
+  ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  QuietOmpl() { ompl::msg::setLogLevel(ompl::msg::LOG_NONE); }
+  ~QuietOmpl() { ompl::msg::setLogLevel(level); }
+};
+
+}  // namespace
+
+void applyPlannerParams(ompl::base::Planner& planner, const PlannerParams& params) {
+  const QuietOmpl quiet;
+  for (const auto& [name, value] : params) {
+    const std::string what = planner.getName() + " parameter '" + name + "'";
+    if (!planner.params().hasParam(name)) {
+      std::vector<std::string> names;
+      planner.params().getParamNames(names);
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      throw std::invalid_argument(planner.getName() + " has no parameter '" + name + "' (" +
+                                  (list.empty() ? std::string("it has none") : "it has: " + list) +
+                                  ")");
+    }
+    if (nonFiniteNumber(value))
+      throw std::invalid_argument(what + ": '" + value + "' is not a finite number");
+    bool set = false;
+    try {  // OMPL throws for a number it cannot read, and returns false for other values
+      set = planner.params().setParam(name, value);
+    } catch (const std::exception&) {
+    }
+    if (!set) throw std::invalid_argument(what + ": value '" + value + "' rejected");
+  }
+}
+
+void checkPlannerParams(const std::string& name, const PlannerParams& params) {
+  if (params.empty()) return;
+  auto space = std::make_shared<ompl::base::RealVectorStateSpace>(1);
+  space->setBounds(0.0, 1.0);
+  auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+  const ompl::base::PlannerPtr planner = planners().at(name)(si);
+  applyPlannerParams(*planner, params);
 }
 
 }  // namespace dss_plan

@@ -123,6 +123,7 @@ int runBenchmark(const Args& a, const dss::LoadedRobot& robot,
     for (const auto& planner : a.planner_list)
       for (const auto& c : checkers) {
         ob::PlannerPtr inner = planners().at(planner)(p.si);
+        applyPlannerParams(*inner, a.planner_params);
         if (a.nearest == "vector") dss::useVectorNearestNeighbors(inner);
         if (a.direct) inner = std::make_shared<dss::DirectFirstPlanner>(inner);
         b.addPlanner(std::make_shared<CheckerBoundPlanner>(inner, c, switching));

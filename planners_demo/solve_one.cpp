@@ -89,6 +89,7 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   if (a.resolution > 0) p.si->setStateValidityCheckingResolution(a.resolution);
   auto factory = planners().find(a.planner);
   const ob::PlannerPtr planner = factory->second(p.si);
+  applyPlannerParams(*planner, a.planner_params);
   ss.setPlanner(a.direct ? std::make_shared<dss::DirectFirstPlanner>(planner) : planner);
   setStartAndGoals(ss, lp);
   const ob::State* s0 = ss.getProblemDefinition()->getStartState(0);
@@ -175,6 +176,11 @@ Outcome solveOne(const Args& a, const dss::LoadedRobot& robot, const ProblemFile
   j["simd"] = dss::simdPathName(dss::activeSimdPath());
   if (a.check_time) j["checking_time_s"] = double(counters.checking_ns) * 1e-9;
   j["planner"] = a.planner;
+  if (!a.planner_params.empty()) {
+    nlohmann::json pj = nlohmann::json::object();
+    for (const auto& [name, value] : a.planner_params) pj[name] = value;
+    j["planner_params"] = pj;
+  }
   j["motion"] = a.motion;
   j["nearest"] = vector_nearest ? "vector" : "ompl";
   // Solved by the straight motion alone (the wrapped planner did not run).
