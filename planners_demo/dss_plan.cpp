@@ -21,6 +21,7 @@
 #include "plan_options.h"
 #include "plan_summary.h"
 #include "problem_files.h"
+#include "quiet_ompl.h"
 #include "run_benchmark.h"
 #include "solve_one.h"
 
@@ -51,10 +52,8 @@ int run(int argc, char** argv) {
     // problems ran before it (shards and one whole run agree). OMPL reseeds its seed
     // generator when asked again, and logs an error saying so: silenced.
     if (k > 0) {
-      const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
-      ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+      const QuietOmpl quiet;
       ompl::RNG::setSeed(a.seed);
-      ompl::msg::setLogLevel(level);
     }
     const Outcome o = solveOne(a, robot, problems[k], a.demo);
     solved += o.solved;

@@ -18,11 +18,12 @@
 #include <ompl/geometric/planners/rrt/pRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/sbl/pSBL.h>
-#include <ompl/util/Console.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+
+#include "quiet_ompl.h"
 
 namespace dss_plan {
 
@@ -59,17 +60,10 @@ bool nonFiniteNumber(const std::string& v) {
   return end == v.c_str() + v.size() && !std::isfinite(x);
 }
 
-// Restores OMPL's log level on scope exit (setParam logs its own error for a bad value).
-struct QuietOmpl {
-  ompl::msg::LogLevel level = ompl::msg::getLogLevel();
-  QuietOmpl() { ompl::msg::setLogLevel(ompl::msg::LOG_NONE); }
-  ~QuietOmpl() { ompl::msg::setLogLevel(level); }
-};
-
 }  // namespace
 
 void applyPlannerParams(ompl::base::Planner& planner, const PlannerParams& params) {
-  const QuietOmpl quiet;
+  const QuietOmpl quiet;  // setParam logs its own error for a value it rejects
   for (const auto& [name, value] : params) {
     const std::string what = planner.getName() + " parameter '" + name + "'";
     if (!planner.params().hasParam(name)) {
