@@ -52,7 +52,7 @@ const char* kUsage =
     "                 [--scene-mesh-parts N]  (a scene mesh: the hulls of its connected\n"
     "                 parts, at most N, in [1, 4096]; default 16; 1: one hull per mesh)\n"
     "                 [--motions discrete|vector|continuous|ompl[,...]] [--resolution f]\n"
-    "                 [--motion-length f]\n"
+    "                 [--motion-length f] [--motion-min-fraction f]\n"
     "  --padding r, --self-padding r  in [0, 1000]; --random N >= 1; --seed S in [0, 2^32-1];\n"
     "  --repeat K: 0 (default) picks 5, 11 or 31 by the number of states; --threads N >= 1\n"
     "  --contacts: each line of a state the first checker calls colliding also names the\n"
@@ -63,6 +63,8 @@ const char* kUsage =
     "  --motion-length times the space's extent, in (0, 1], default 0.2); stdout: 1/0 per\n"
     "  motion for the first validator (with --contacts, its first colliding state and pairs);\n"
     "  --resolution f in (0, 1]: OMPL's state validity checking resolution (0.01)\n"
+    "  --motion-min-fraction f in [1e-12, 1]: the continuous validator's smallest sub-motion\n"
+    "  (1/1024); 1: a motion is cleared whole or refused\n"
     "exit codes: 0 success; 1 runtime error (files, model); 2 usage error\n"
     "robot meshes:\n";
 
@@ -187,6 +189,8 @@ int run(int argc, char** argv) {
   std::string motions;  // --motions: the motion validators
   double resolution = 0.01, motion_length = 0.2;
   bool motion_option = false;  // --resolution or --motion-length given
+  double min_fraction = 1.0 / 1024.0;
+  bool min_fraction_given = false;
   const std::string usage = std::string(kUsage) + dss::cli::kMeshOptionsUsage;
   dss::cli::ArgCursor cli(argc, argv, "dss_check", usage.c_str());
   dss::MeshGeometryOptions meshes;
@@ -238,6 +242,8 @@ int run(int argc, char** argv) {
       resolution = cli.number(0, 1), motion_option = true;
     else if (cli.option("--motion-length"))
       motion_length = cli.number(0, 1), motion_option = true;
+    else if (cli.option("--motion-min-fraction"))
+      min_fraction = cli.number(1e-12, 1.0), min_fraction_given = true;
     else
       cli.unknown();
   }
@@ -271,6 +277,9 @@ int run(int argc, char** argv) {
     if (resolution <= 0) cli.error("--resolution: expected a number in (0, 1]");
     if (motion_length <= 0) cli.error("--motion-length: expected a number in (0, 1]");
   }
+  if (min_fraction_given &&
+      std::find(validators.begin(), validators.end(), "continuous") == validators.end())
+    cli.error("--motion-min-fraction applies to --motions continuous only");
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
@@ -381,6 +390,7 @@ int run(int argc, char** argv) {
     mo.checker = configFor(checkers);
     mo.resolution = resolution;
     mo.motion_length = motion_length;
+    mo.min_fraction = min_fraction;
     mo.random = states.empty() ? random_n : 0;
     mo.repeat = repeat;
     mo.contacts = contacts;

@@ -152,7 +152,7 @@ void checkMotions(const dss::Problem& p, const std::vector<std::vector<double>>&
   std::vector<ob::MotionValidatorPtr> validators;
   for (const std::string& name : o.validators) {
     if (name == "continuous")
-      validators.push_back(dss::makeContinuousMotionValidator(p, *vc));
+      validators.push_back(dss::makeContinuousMotionValidator(p, *vc, o.min_fraction));
     else if (name == "ompl")
       validators.push_back(std::make_shared<ob::DiscreteMotionValidator>(p.si));
     else
@@ -218,7 +218,10 @@ void checkMotions(const dss::Problem& p, const std::vector<std::vector<double>>&
     j["repetitions"] = repeat;
     j["states_per_motion"] = states_per_motion[k];  // state checks, the end state's included
     j["batch_free_states_per_motion"] = batch_per_motion[k];
-    if (o.validators[k] == "continuous") j["sub_motions_per_motion"] = subs_per_motion[k];
+    if (o.validators[k] == "continuous") {
+      j["sub_motions_per_motion"] = subs_per_motion[k];
+      j["min_fraction"] = o.min_fraction;
+    }
     j["simd"] = dss::simdPathName(p.model->kinematics().simdPath());
     j["model"] = p.model->summary();
     if (k > 0) {

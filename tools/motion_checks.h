@@ -20,10 +20,13 @@ struct MotionCheckOptions {
   dss::CheckerConfig checker;  ///< the state checker every validator stands on
   double resolution = 0.01;    ///< OMPL's state validity checking resolution
   double motion_length = 0.2;  ///< random motions: at most this fraction of the extent
-  long random = 0;             ///< random motions (0: the path of `path`)
-  int repeat = 0;              ///< timed repetitions (0: by the number of motions)
-  bool contacts = false;       ///< explain each motion the first validator refuses
-  std::string path_file;       ///< the states file, for messages
+  /// continuous: the smallest sub-motion, a fraction of the motion (1: the whole motion is
+  /// cleared at once or refused)
+  double min_fraction = 1.0 / 1024.0;
+  long random = 0;        ///< random motions (0: the path of `path`)
+  int repeat = 0;         ///< timed repetitions (0: by the number of motions)
+  bool contacts = false;  ///< explain each motion the first validator refuses
+  std::string path_file;  ///< the states file, for messages
 };
 
 /// The names --motions accepts.

@@ -74,6 +74,37 @@ BOOST_AUTO_TEST_CASE(the_validators_agree_where_they_must_on_random_motions) {
   BOOST_TEST(s[3]["disagreements"] == refused_by_continuous_only);
 }
 
+BOOST_AUTO_TEST_CASE(the_continuous_smallest_sub_motion_reaches_the_validator) {
+  // At a smallest sub-motion of 1 the continuous validator clears each motion whole or refuses
+  // it: one sub-motion per motion, never a motion with a colliding state, and fewer motions
+  // than when it may halve them down to 1/1024 (the motions near the shelf need the halving).
+  const std::vector<std::string> common = {"--random", "400", "--seed", "3", "--repeat", "1"};
+  std::vector<std::string> whole = common, halved = common;
+  whole.insert(whole.end(), {"--motions", "discrete,continuous", "--motion-min-fraction", "1"});
+  halved.insert(halved.end(), {"--motions", "discrete,continuous"});
+  const dss_test::ToolRun w = dss_test::runTool("dss_check", armArgs(whole));
+  const dss_test::ToolRun h = dss_test::runTool("dss_check", armArgs(halved));
+  BOOST_REQUIRE_MESSAGE(w.exit_code == 0, w.err);
+  BOOST_REQUIRE_MESSAGE(h.exit_code == 0, h.err);
+  const std::vector<nlohmann::json> sw = summaries(w.err), sh = summaries(h.err);
+  BOOST_REQUIRE(sw.size() == 2u);
+  BOOST_REQUIRE(sh.size() == 2u);
+  BOOST_TEST(sw[1]["min_fraction"].get<double>() == 1.0);
+  BOOST_TEST(sh[1]["min_fraction"].get<double>() == 1.0 / 1024.0);
+  BOOST_TEST(sw[1]["sub_motions_per_motion"].get<double>() == 1.0);
+  BOOST_TEST(sh[1]["sub_motions_per_motion"].get<double>() > 1.0);
+  // The discrete verdicts are the same in both runs (the seed draws the same motions).
+  BOOST_TEST(sw[0]["valid"] == sh[0]["valid"]);
+  const long discrete_free = sw[0]["valid"].get<long>();
+  const long whole_free = sw[1]["valid"].get<long>(), halved_free = sh[1]["valid"].get<long>();
+  BOOST_TEST(whole_free > 0);
+  BOOST_TEST(whole_free < halved_free);
+  BOOST_TEST(halved_free <= discrete_free);
+  // Every motion cleared whole is free at each discrete state: it refused what the discrete
+  // validator refused (the difference is the motions it alone refused).
+  BOOST_TEST(sw[1]["disagreements"].get<long>() == discrete_free - whole_free);
+}
+
 BOOST_AUTO_TEST_CASE(a_path_from_a_states_file_names_where_it_collides) {
   // The shelf request's start, its goal (the straight motion between them crosses the shelf),
   // the goal again (a motion of length zero) and back to the start.
@@ -166,6 +197,12 @@ BOOST_AUTO_TEST_CASE(paths_and_options_motions_cannot_take_are_refused) {
   usage({"--random", "5", "--motions", "discrete", "--resolution", "0"}, "--resolution");
   usage({"--random", "5", "--motions", "discrete", "--motion-length", "2"}, "--motion-length");
   usage({"--random", "5", "--resolution", "0.02"}, "apply to --motions only");
+  usage({"--random", "5", "--motions", "discrete,vector", "--motion-min-fraction", "0.5"},
+        "--motion-min-fraction applies to --motions continuous only");
+  usage({"--random", "5", "--motions", "continuous", "--motion-min-fraction", "0"},
+        "--motion-min-fraction");
+  usage({"--random", "5", "--motions", "continuous", "--motion-min-fraction", "nan"},
+        "--motion-min-fraction");
   usage({"--random", "10000001", "--motions", "discrete"}, "--random takes at most 10000000");
 }
 
