@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "dss/checker/checker_setup.h"
+#include "dss/checker/continuous_motion.h"
 #include "dss/scene/scene_load_options.h"
 #include "planner_registry.h"
 
@@ -15,7 +16,7 @@ struct Args {
   std::string robot, srdf, scene, request, problems, planner = "RRTConnect", checker = "dss",
                                                      motion = "discrete", path, render,
                                                      nearest = "vector";
-  double min_fraction = 1.0 / 1024.0;
+  double min_fraction = dss::kDefaultMinFraction;
   double time = 10.0, padding = 0.0, self_padding = 0.0, resolution = 0.0;
   unsigned long seed = 1;
   bool simplify = false;

@@ -189,7 +189,7 @@ int run(int argc, char** argv) {
   std::string motions;  // --motions: the motion validators
   double resolution = 0.01, motion_length = 0.2;
   bool motion_option = false;  // --resolution or --motion-length given
-  double min_fraction = 1.0 / 1024.0;
+  double min_fraction = dss::kDefaultMinFraction;
   bool min_fraction_given = false;
   const std::string usage = std::string(kUsage) + dss::cli::kMeshOptionsUsage;
   dss::cli::ArgCursor cli(argc, argv, "dss_check", usage.c_str());

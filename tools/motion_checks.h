@@ -22,7 +22,7 @@ struct MotionCheckOptions {
   double motion_length = 0.2;  ///< random motions: at most this fraction of the extent
   /// continuous: the smallest sub-motion, a fraction of the motion (1: the whole motion is
   /// cleared at once or refused)
-  double min_fraction = 1.0 / 1024.0;
+  double min_fraction = dss::kDefaultMinFraction;
   long random = 0;        ///< random motions (0: the path of `path`)
   int repeat = 0;         ///< timed repetitions (0: by the number of motions)
   bool contacts = false;  ///< explain each motion the first validator refuses

@@ -49,13 +49,16 @@
 
 namespace dss {
 
+/// The continuous check's smallest sub-motion unless told otherwise: a fraction of the motion.
+constexpr double kDefaultMinFraction = 1.0 / 1024.0;
+
 class ContinuousMotionChecker {
  public:
   /// `checker` supplies the model, the paddings and the mode (and checks midpoint states).
   /// `min_fraction` in (0, 1]: the smallest sub-motion before giving up. Throws
   /// std::invalid_argument otherwise.
   explicit ContinuousMotionChecker(std::shared_ptr<const DssChecker> checker,
-                                   double min_fraction = 1.0 / 1024.0);
+                                   double min_fraction = kDefaultMinFraction);
 
   /// True when the straight motion from q0 to q1 (active joint values) is free of collisions.
   /// Otherwise `last_valid_fraction` (optional) receives the start of the first sub-motion that

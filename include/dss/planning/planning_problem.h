@@ -51,6 +51,7 @@ std::shared_ptr<DiscreteMotionValidator> makeDiscreteMotionValidator(const Probl
 /// The continuous motion validator on a DSS validity checker of the problem; throws
 /// std::invalid_argument for another checker. `min_fraction`: see ContinuousMotionChecker.
 std::shared_ptr<ContinuousMotionValidator> makeContinuousMotionValidator(
-    const Problem& problem, const ValidityChecker& checker, double min_fraction = 1.0 / 1024.0);
+    const Problem& problem, const ValidityChecker& checker,
+    double min_fraction = kDefaultMinFraction);
 
 }  // namespace dss
