@@ -1,9 +1,10 @@
 // The discrete motion check (dss/checker/discrete_motion.h) and its OMPL validator
 // (discrete_motion_validator.h): each order visits every state of a motion once; the verdict
-// and the first colliding state do not depend on the order; the joint-space interpolation is
-// OMPL's to the bit; and on random motions of our robots (plain, continuous, planar and
-// floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator gives
-// OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
+// and the first colliding state do not depend on the order, nor on batches proving states free
+// (the first states of the order one by one, the end never in a batch); the joint-space
+// interpolation is OMPL's to the bit; and on random motions of our robots (plain, continuous,
+// planar and floating joints) and of the Panda and UR5 in MotionBenchMaker scenes, the validator
+// gives OMPL's DiscreteMotionValidator's verdicts and lastValid (fraction and state), with and
 // without the direct joint-value path, in both orders; the validity checker knows the last state
 // it found free; a checker that forwards to ours is looked through (the same states asked); the
 // counts per kind of motion take every motion once and every state of it at most once.
@@ -268,6 +269,79 @@ BOOST_AUTO_TEST_CASE(the_verdict_and_first_colliding_state_do_not_depend_on_the_
     // In order from the start, up to the first colliding state.
     BOOST_REQUIRE(int(asked.size()) == std::min(first, n));
     for (std::size_t k = 0; k < asked.size(); ++k) BOOST_REQUIRE(asked[k] == int(k) + 1);
+  }
+}
+
+// The batched check (a batch proving a random part of the free states it is given): the
+// verdict and first colliding state of the one-by-one check; the first states of the order one
+// by one before any batch (the end of a motion towards a new state, the two states near the end
+// of one towards a held state); the end state never in a batch; no batch of fewer than
+// kMotionMinBatch or more than kMotionBatch states; every state at most once, and in the order.
+BOOST_AUTO_TEST_CASE(batches_answer_as_the_states_one_by_one) {
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int n = 1 + int(rng() % 60);
+    std::set<int> colliding;
+    const int shape = int(rng() % 4);
+    if (shape == 1) colliding.insert(1 + int(rng() % unsigned(n)));
+    if (shape == 2) {
+      const int lo = 1 + int(rng() % unsigned(n)), len = 1 + int(rng() % 8);
+      for (int j = lo; j <= std::min(n, lo + len - 1); ++j) colliding.insert(j);
+    }
+    if (shape == 3)
+      for (int j = 1; j <= n; ++j)
+        if (rng() % 5 == 0) colliding.insert(j);
+    const bool verdict = colliding.empty();
+    std::vector<int> seen;  // every state as first given to free or to a batch
+    std::set<int> batched, proven_free;
+    int singles_before_batch = -1, singles = 0;
+    auto free = [&](int j) {
+      BOOST_REQUIRE(proven_free.count(j) == 0);  // a proven state is never checked again
+      if (batched.count(j) == 0) seen.push_back(j);
+      ++singles;
+      return colliding.count(j) == 0;
+    };
+    auto batch = [&](const int* js, int m) {
+      BOOST_REQUIRE(m >= dss::kMotionMinBatch);
+      BOOST_REQUIRE(m <= dss::kMotionBatch);
+      if (singles_before_batch < 0) singles_before_batch = singles;
+      unsigned proven = 0;
+      for (int i = 0; i < m; ++i) {
+        BOOST_REQUIRE(js[i] != n);
+        seen.push_back(js[i]);
+        batched.insert(js[i]);
+        if (colliding.count(js[i]) == 0 && rng() % 4 != 0)
+          proven |= 1u << i, proven_free.insert(js[i]);
+      }
+      return proven;
+    };
+    for (dss::MotionOrder kind : {dss::MotionOrder::kEndFirst, dss::MotionOrder::kEndLast}) {
+      std::vector<int> order;
+      dss::CheckOrderCursor cursor(n, kind);
+      for (int j = cursor.next(); j != 0; j = cursor.next()) order.push_back(j);
+      seen.clear(), batched.clear(), proven_free.clear();
+      singles_before_batch = -1, singles = 0;
+      BOOST_REQUIRE(dss::motionStatesFreeBatched(n, free, batch, nullptr, kind) == verdict);
+      const int probes = kind == dss::MotionOrder::kEndFirst ? dss::kMotionProbesEndFirst
+                                                             : dss::kMotionProbesEndLast;
+      if (singles_before_batch >= 0) BOOST_REQUIRE(singles_before_batch >= probes);
+      BOOST_REQUIRE(seen.size() <= order.size());
+      if (verdict) BOOST_REQUIRE(seen.size() == order.size());
+      for (std::size_t k = 0; k < seen.size(); ++k) BOOST_REQUIRE(seen[k] == order[k]);
+      if (kind == dss::MotionOrder::kEndFirst) BOOST_REQUIRE(order.front() == n);
+    }
+    // From the start: the first colliding state, states in order.
+    std::vector<int> asked_batched;
+    auto free_in_order = [&](int j) {
+      asked_batched.push_back(j);
+      return colliding.count(j) == 0;
+    };
+    batched.clear(), proven_free.clear();
+    int first = -1;
+    BOOST_REQUIRE(dss::motionStatesFreeBatched(n, free_in_order, batch, &first) == verdict);
+    BOOST_REQUIRE(first == (verdict ? n + 1 : *colliding.begin()));
+    for (std::size_t k = 1; k < asked_batched.size(); ++k)
+      BOOST_REQUIRE(asked_batched[k] > asked_batched[k - 1]);
   }
 }
 

@@ -92,12 +92,15 @@ bool motionStatesFree(int n, Free&& free, int* first_colliding = nullptr,
 /// batches: `batch(js, m)` returns bit i set for each state js[i] (m <= kMotionBatch states)
 /// proven free (StateChecker::freeLanes); the states it leaves are decided by `free`, in the
 /// same order as the batch lists them, and so is state n (the end state, which OMPL decides
-/// with the space information's validity checker). Without `first_colliding`: the first
-/// `kMotionProbes` states of the order one by one (a colliding motion mostly ends there), then
-/// the rest of the order in batches; with it, in order from state 1, batch after batch. Runs of
-/// fewer than kMotionMinBatch states go one by one.
+/// with the space information's validity checker). Without `first_colliding`: the first states
+/// of the order one by one (a colliding motion mostly ends there: kMotionProbesEndFirst of a
+/// motion towards a new state, the end itself; kMotionProbesEndLast of a motion towards a held
+/// state, the two states near its end), then the rest of the order in batches; with it, in
+/// order from state 1, batch after batch. Runs of fewer than kMotionMinBatch states go one by
+/// one.
 constexpr int kMotionBatch = 8;
-constexpr int kMotionProbes = 2;
+constexpr int kMotionProbesEndFirst = 1;
+constexpr int kMotionProbesEndLast = 2;
 constexpr int kMotionMinBatch = 3;
 template <class Free, class Batch>
 bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colliding = nullptr,
@@ -133,7 +136,8 @@ bool motionStatesFreeBatched(int n, Free&& free, Batch&& batch, int* first_colli
     return ok;
   }
   CheckOrderCursor order(n, kind);
-  for (int k = 0; k < kMotionProbes; ++k) {
+  const int probes = kind == MotionOrder::kEndFirst ? kMotionProbesEndFirst : kMotionProbesEndLast;
+  for (int k = 0; k < probes; ++k) {
     const int j = order.next();
     if (j == 0) return true;
     if (!free(j)) return false;
